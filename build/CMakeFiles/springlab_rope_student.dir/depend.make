@@ -1,0 +1,2 @@
+# Empty dependencies file for springlab_rope_student.
+# This may be replaced when dependencies are built.

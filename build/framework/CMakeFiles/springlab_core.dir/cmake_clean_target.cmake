@@ -1,0 +1,3 @@
+file(REMOVE_RECURSE
+  "libspringlab_core.a"
+)

@@ -1,0 +1,40 @@
+# springlab_add_lab(NAME rope DIR 01_rope)
+#
+# Builds one lab from each tree that is present:
+#   springlab_<name>_student    labs/<dir>       the student's code
+#   springlab_<name>_reference  solutions/<dir>  the reference, for the reference app
+#   springlab_<name>_oracle     solutions/<dir>  the reference again, with its namespace
+#                                                renamed (springlab::<name>_reference) so the
+#                                                grading tests can link it beside the student's
+#                                                code and compare the two on random inputs.
+# and records the lab in SPRINGLAB_LABS for the apps and tests.
+function(springlab_add_lab)
+  cmake_parse_arguments(LAB "" "NAME;DIR" "" ${ARGN})
+  set(labs ${SPRINGLAB_LABS})
+  list(APPEND labs "${LAB_NAME}:${LAB_DIR}")
+  set(SPRINGLAB_LABS ${labs} PARENT_SCOPE)
+
+  set(trees)
+  if(SPRINGLAB_BUILD_LABS AND EXISTS ${CMAKE_SOURCE_DIR}/labs/${LAB_DIR})
+    list(APPEND trees "student:labs")
+  endif()
+  if(SPRINGLAB_BUILD_SOLUTIONS)
+    list(APPEND trees "reference:solutions" "oracle:solutions")
+  endif()
+
+  foreach(entry IN LISTS trees)
+    string(REPLACE ":" ";" parts ${entry})
+    list(GET parts 0 tree)
+    list(GET parts 1 folder)
+    set(target springlab_${LAB_NAME}_${tree})
+    file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/${folder}/${LAB_DIR}/*.cpp)
+    add_library(${target} STATIC ${sources})
+    target_include_directories(${target} PUBLIC ${CMAKE_SOURCE_DIR}/${folder}/${LAB_DIR})
+    target_link_libraries(${target} PUBLIC springlab_core PRIVATE springlab_warnings)
+    # A skeleton's stubs do not use their parameters yet.
+    target_compile_options(${target} PRIVATE -Wno-unused-parameter)
+    if(tree STREQUAL "oracle")
+      target_compile_definitions(${target} PRIVATE ${LAB_NAME}=${LAB_NAME}_reference)
+    endif()
+  endforeach()
+endfunction()

@@ -1,0 +1,136 @@
+// springlab-student / springlab-reference: run a scene headless (sim) or in the viewer (view).
+// Exit codes: 0 success, 1 usage, 2 bad scene or option, 3 exercise not implemented,
+// 4 the simulation blew up, 5 output could not be written.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <iostream>
+
+#include <springlab/recorder.hpp>
+#include <springlab/registry.hpp>
+#ifdef SPRINGLAB_HAS_VIEWER
+#include <springlab/viewer.hpp>
+#endif
+
+namespace springlab {
+void registerLabs(Registry& registry);  // register_labs.cpp, generated
+}
+
+namespace {
+
+using namespace springlab;
+
+struct SimOptions {
+  std::string scene;
+  long steps = 0;
+  double dt = 0.0;  // 0: the scene's dt
+  std::string integrator;
+  std::string out;
+  long saveEvery = 1;
+  bool noBlowUpCheck = false;
+};
+
+int runSim(const Registry& registry, const SimOptions& o) {
+  // Load the scene and apply the command line's overrides.
+  LoadedScene scene = registry.loadScene(o.scene);
+  Simulation& sim = *scene.sim;
+  if (!o.integrator.empty()) sim.setIntegrator(registry.makeIntegrator(o.integrator));
+  const double dt = o.dt > 0.0 ? o.dt : scene.settings.dt;
+  sim.setBlowUpCheck(!o.noBlowUpCheck);
+
+  // Step, saving every saveEvery-th frame (and the first and the last).
+  Recorder recorder(o.out, scene.settings, sim);
+  recorder.record(sim);
+  std::string status = "ok";
+  const auto start = std::chrono::steady_clock::now();
+  long step = 0;
+  try {
+    for (step = 1; step <= o.steps; ++step) {
+      sim.operate(dt);
+      if (step % o.saveEvery == 0 || step == o.steps) recorder.record(sim);
+    }
+  } catch (const BlowUp& e) {
+    recorder.record(sim);
+    recorder.close(e.what());
+    std::cerr << "springlab sim: " << e.what() << "\n";
+    return 4;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  recorder.close(status);
+
+  // A one-line summary a student can compare between runs.
+  const Energies e = sim.energies();
+  std::cout << "sim: " << scene.settings.file << " with " << sim.integrator().name() << ", " << o.steps
+            << " steps of dt = " << dt << " s (t = " << sim.state.time << " s), " << sim.stats.forceEvaluations
+            << " force evaluations, " << seconds << " s wall, " << (seconds > 0 ? static_cast<double>(o.steps) / seconds : 0.0)
+            << " steps/s; total energy " << e.total() << " J; wrote " << o.out << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Registry registry;
+  registerFramework(registry);
+  registerLabs(registry);
+
+  CLI::App app{std::string("springlab (") + SPRINGLAB_TREE + " code): run mass-spring scenes"};
+  app.require_subcommand(1);
+
+  SimOptions sim;
+  auto* simCmd = app.add_subcommand("sim", "run a scene headless and write its states to a file");
+  simCmd->add_option("scene", sim.scene, "scene file (JSON)")->required();
+  simCmd->add_option("--steps", sim.steps, "number of steps")->required()->check(CLI::PositiveNumber);
+  simCmd->add_option("--dt", sim.dt, "step in s (default: the scene's)")->check(CLI::PositiveNumber);
+  simCmd->add_option("--integrator", sim.integrator, "integrator name (default: the scene's)");
+  simCmd->add_option("--out", sim.out, "output file, .json or .csv")->required();
+  simCmd->add_option("--save-every", sim.saveEvery, "save every K-th step (default 1)")->check(CLI::PositiveNumber);
+  simCmd->add_flag("--no-blowup-check", sim.noBlowUpCheck, "keep stepping when the run blows up");
+
+  auto* listCmd = app.add_subcommand("list", "list the integrators and labs of this build");
+
+#ifdef SPRINGLAB_HAS_VIEWER
+  std::string viewScene;
+  ViewerOptions view;
+  view.tree = SPRINGLAB_TREE;
+  auto* viewCmd = app.add_subcommand("view", "open the viewer on a scene");
+  viewCmd->add_option("scene", viewScene, "scene file (JSON)")->required();
+  viewCmd->add_option("--frames", view.frames, "close after N frames (0: run until closed)");
+  viewCmd->add_option("--snapshot", view.snapshot, "write a PNG of the last frame");
+  viewCmd->add_option("--width", view.width, "window width in pixels");
+  viewCmd->add_option("--height", view.height, "window height in pixels");
+  viewCmd->add_option("--integrator", view.integrator, "integrator name (default: the scene's)");
+#endif
+
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    if (*simCmd) return runSim(registry, sim);
+    if (*listCmd) {
+      std::cout << "integrators:";
+      for (const auto& n : registry.integratorNames()) std::cout << ' ' << n;
+      std::cout << "\nlabs:";
+      for (const auto& n : registry.labNames()) std::cout << ' ' << n;
+      std::cout << '\n';
+      return 0;
+    }
+#ifdef SPRINGLAB_HAS_VIEWER
+    if (*viewCmd) return runViewer(registry, viewScene, view);
+#endif
+  } catch (const SceneError& e) {
+    std::cerr << "springlab: bad scene: " << e.what() << "\n";
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "springlab: " << e.what() << "\n";
+    return 2;
+  } catch (const NotImplemented& e) {
+    std::cerr << "springlab: " << e.what() << "\n";
+    return 3;
+  } catch (const BlowUp& e) {
+    std::cerr << "springlab: " << e.what() << "\n";
+    return 4;
+  } catch (const std::exception& e) {
+    std::cerr << "springlab: " << e.what() << "\n";
+    return 5;
+  }
+  return 1;
+}

@@ -1,0 +1,53 @@
+#pragma once
+// Diagnostics every system provides: energies, momentum, the largest angular frequency and
+// the blow-up check that stops a run with a message naming the likely cause.
+#include <stdexcept>
+#include <string>
+
+#include "springlab/math.hpp"
+
+namespace springlab {
+
+class Simulation;
+class Integrator;
+
+struct Energies {
+  double kinetic = 0.0;        // J, sum 1/2 m |v|^2
+  double gravitational = 0.0;  // J, sum -m g . x
+  double elastic = 0.0;        // J, sum 1/2 k (l - L0)^2 over springs
+  double other = 0.0;          // J, potentials a lab adds (ground repulsion, pressure)
+  double total() const { return kinetic + gravitational + elastic + other; }
+};
+
+// Upper bound on the highest angular frequency of the springs (rad/s), by Gershgorin's
+// theorem on M^-1 K: w_max^2 <= max_i 2 sum_{springs at i} k / m_i. It is exact for a
+// uniform chain, w_max = 2 sqrt(k/m), and never underestimates.
+double springMaxAngularFrequency(const Simulation& sim);
+
+// The largest dt the integrator keeps stable for undamped springs, c / w_max (s);
+// 0 when the method has no stable dt (explicit Euler).
+double predictedStableDt(const Integrator& integrator, double maxAngularFrequency);
+
+// Raised when a run blew up; what() says when, why it is likely, and the safe dt.
+class BlowUp : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Watches a run: non-finite state, or kinetic plus elastic energy grown far beyond the
+// energy the scene could ever hold (its initial energy plus the work gravity can do).
+class BlowUpCheck {
+ public:
+  // Energy growth factor over the scene's energy scale that counts as a blow-up.
+  static constexpr double kRunawayFactor = 1.0e4;
+
+  void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
+  void check(const Simulation& sim, double dt) const;  // throws BlowUp
+
+  double energyScale() const { return energyScale_; }
+
+ private:
+  double energyScale_ = 0.0;  // J
+};
+
+}  // namespace springlab

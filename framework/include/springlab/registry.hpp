@@ -1,0 +1,63 @@
+#pragma once
+// The catalogue of what a build can run: integrators by name and scene kinds by lab.
+// The framework registers its own pieces; each lab adds its pieces with one call
+// (see labs/*/register.cpp). Nothing is registered behind the program's back.
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "springlab/integrator.hpp"
+#include "springlab/scene_reader.hpp"
+#include "springlab/simulation.hpp"
+
+namespace springlab {
+
+// Settings every scene file has, whatever its lab (units in README's scene reference).
+struct SceneSettings {
+  std::string file;         // path the scene was read from
+  std::string lab;          // "rope", "net", "softbody": selects the factory and the section
+  std::string name;         // title shown in the viewer
+  std::string description;  // one sentence
+  int dimension = 3;        // 2 or 3
+  double dt = 0.0;          // s, integrator step
+  int substeps = 1;         // integrator steps per displayed frame
+  std::string integrator;   // registered integrator name
+  Vec3 gravity = Vec3::Zero();  // m/s^2
+};
+
+struct LoadedScene {
+  SceneSettings settings;
+  std::unique_ptr<Simulation> sim;
+};
+
+class Registry {
+ public:
+  using IntegratorFactory = std::function<std::unique_ptr<Integrator>()>;
+  // Builds a simulation from the scene's lab section (e.g. the "rope" object).
+  using SceneFactory =
+      std::function<std::unique_ptr<Simulation>(SceneReader& section, const SceneSettings&)>;
+
+  void addIntegrator(const std::string& name, IntegratorFactory factory);
+  void addScene(const std::string& lab, SceneFactory factory);
+
+  // Throws std::invalid_argument listing the known names when `name` is unknown.
+  std::unique_ptr<Integrator> makeIntegrator(const std::string& name) const;
+  std::vector<std::string> integratorNames() const;
+  std::vector<std::string> labNames() const;
+
+  // Read and validate a scene file, build its simulation with the scene's integrator.
+  // Throws SceneError naming the file and key on any bad input.
+  LoadedScene loadScene(const std::string& path) const;
+  LoadedScene loadScene(SceneReader& reader) const;
+
+ private:
+  std::map<std::string, IntegratorFactory> integrators_;
+  std::map<std::string, SceneFactory> scenes_;
+};
+
+// Registers the framework's own integrators (symplectic Euler).
+void registerFramework(Registry& registry);
+
+}  // namespace springlab

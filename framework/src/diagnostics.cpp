@@ -1,0 +1,92 @@
+#include "springlab/diagnostics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "springlab/simulation.hpp"
+
+namespace springlab {
+
+double springMaxAngularFrequency(const Simulation& sim) {
+  // Row sums of M^-1 K for the springs (Gershgorin): each spring adds k to both ends' rows
+  // twice (diagonal and off-diagonal), so a free mass with springs k_j has |row| = 2 sum k_j.
+  std::vector<double> rowSum(sim.masses.size(), 0.0);
+  for (const Spring& s : sim.springs) {
+    rowSum[s.mass1] += 2.0 * s.springConstant;
+    rowSum[s.mass2] += 2.0 * s.springConstant;
+  }
+  double w2 = 0.0;
+  for (int i = 0; i < sim.numOfMasses(); ++i) {
+    if (!sim.masses[i].pinned) w2 = std::max(w2, rowSum[i] / sim.masses[i].m);
+  }
+  return std::sqrt(w2);
+}
+
+double predictedStableDt(const Integrator& integrator, double maxAngularFrequency) {
+  if (maxAngularFrequency <= 0.0) return INFINITY;
+  return integrator.stabilityConstant() / maxAngularFrequency;
+}
+
+void BlowUpCheck::arm(const Simulation& sim) {
+  // Energy the scene holds now plus what gravity can add over the scene's extent, plus
+  // 1 J per kg so that a scene at rest without gravity still has a finite scale.
+  const Energies e = sim.energies();
+  double extent = 0.0;
+  double totalMass = 0.0;
+  if (!sim.state.pos.empty()) {
+    Vec3 lo = sim.state.pos[0], hi = sim.state.pos[0];
+    for (const Vec3& p : sim.state.pos) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    extent = (hi - lo).norm();
+  }
+  for (const Spring& s : sim.springs) extent += s.springLength;
+  for (const Mass& m : sim.masses) totalMass += m.m;
+  energyScale_ = std::abs(e.kinetic) + std::abs(e.elastic) + std::abs(e.other) +
+                 totalMass * (sim.gravitation.norm() * extent + 1.0);
+}
+
+void BlowUpCheck::check(const Simulation& sim, double dt) const {
+  // Non-finite state: name the first mass that went bad.
+  std::string why;
+  for (int i = 0; i < sim.numOfMasses() && why.empty(); ++i) {
+    if (!sim.state.pos[i].allFinite() || !sim.state.vel[i].allFinite()) {
+      why = "mass " + std::to_string(i) + " has a non-finite position or velocity";
+    }
+  }
+  // Runaway energy: kinetic plus elastic energy far beyond anything the scene can hold.
+  if (why.empty()) {
+    const Energies e = sim.energies();
+    const double grown = e.kinetic + e.elastic;
+    if (!(grown <= kRunawayFactor * energyScale_)) {
+      std::ostringstream os;
+      os << "kinetic + elastic energy reached " << grown << " J, over " << kRunawayFactor
+         << " times the scene's energy scale of " << energyScale_ << " J";
+      why = os.str();
+    }
+  }
+  if (why.empty()) return;
+
+  // Name the likely cause: dt against the integrator's stability limit.
+  const Integrator& integrator = sim.integrator();
+  const double wMax = sim.maxAngularFrequency();
+  const double safeDt = predictedStableDt(integrator, wMax);
+  std::ostringstream msg;
+  msg << "simulation blew up at t = " << sim.state.time << " s (step " << sim.stats.steps << "): " << why
+      << ". ";
+  if (integrator.stabilityConstant() <= 0.0) {
+    msg << "Likely cause: " << integrator.name()
+        << " gains energy at every dt on undamped springs (w_max = " << wMax
+        << " rad/s); use symplectic_euler or a Verlet method, or a much smaller dt with damping.";
+  } else {
+    msg << "Likely cause: dt = " << dt << " s is too large for " << integrator.name()
+        << ": the stiffest mode has w_max ~ " << wMax << " rad/s, so dt must stay below about "
+        << integrator.stabilityConstant() << " / w_max = " << safeDt << " s.";
+    if (dt <= safeDt) msg << " dt is below that limit: look for a force that grows without bound.";
+  }
+  throw BlowUp(msg.str());
+}
+
+}  // namespace springlab

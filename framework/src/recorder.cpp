@@ -1,0 +1,80 @@
+#include "springlab/recorder.hpp"
+
+#include <iomanip>
+#include <stdexcept>
+
+namespace springlab {
+
+namespace {
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+nlohmann::json toJson(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+}  // namespace
+
+Recorder::Recorder(const std::string& path, const SceneSettings& settings, const Simulation& sim)
+    : path_(path) {
+  if (endsWith(path, ".json")) {
+    json_ = true;
+  } else if (endsWith(path, ".csv")) {
+    json_ = false;
+  } else {
+    throw std::invalid_argument(path + ": output must end in .json or .csv");
+  }
+  out_.open(path);
+  if (!out_) throw std::runtime_error(path + ": cannot write the output file");
+  out_ << std::setprecision(17);
+
+  // Header: what was run, so a file is self-describing.
+  if (json_) {
+    document_["scene"] = settings.file;
+    document_["lab"] = settings.lab;
+    document_["integrator"] = sim.integrator().name();
+    document_["dimension"] = sim.dimension;
+    document_["masses"] = sim.numOfMasses();
+    document_["frames"] = nlohmann::json::array();
+  } else {
+    out_ << "frame,time,mass,x,y,z,vx,vy,vz,kinetic,gravitational,elastic,other,total,px,py,pz\n";
+  }
+}
+
+void Recorder::record(const Simulation& sim) {
+  const Energies e = sim.energies();
+  const Vec3 p = sim.momentum();
+  if (json_) {
+    nlohmann::json frame;
+    frame["time"] = sim.state.time;
+    frame["energy"] = {{"kinetic", e.kinetic}, {"gravitational", e.gravitational},
+                       {"elastic", e.elastic}, {"other", e.other}, {"total", e.total()}};
+    frame["momentum"] = toJson(p);
+    frame["force_evaluations"] = sim.stats.forceEvaluations;
+    auto& pos = frame["pos"] = nlohmann::json::array();
+    auto& vel = frame["vel"] = nlohmann::json::array();
+    for (int i = 0; i < sim.numOfMasses(); ++i) {
+      pos.push_back(toJson(sim.state.pos[i]));
+      vel.push_back(toJson(sim.state.vel[i]));
+    }
+    document_["frames"].push_back(std::move(frame));
+    return;
+  }
+  const long frame = csvFrames_++;
+  for (int i = 0; i < sim.numOfMasses(); ++i) {
+    const Vec3& x = sim.state.pos[i];
+    const Vec3& v = sim.state.vel[i];
+    out_ << frame << ',' << sim.state.time << ',' << i << ',' << x.x() << ',' << x.y() << ',' << x.z() << ','
+         << v.x() << ',' << v.y() << ',' << v.z() << ',' << e.kinetic << ',' << e.gravitational << ','
+         << e.elastic << ',' << e.other << ',' << e.total() << ',' << p.x() << ',' << p.y() << ',' << p.z()
+         << '\n';
+  }
+}
+
+void Recorder::close(const std::string& status) {
+  if (json_) {
+    document_["status"] = status;
+    out_ << document_.dump(1) << '\n';
+  }
+  out_.close();
+  if (!out_) throw std::runtime_error(path_ + ": writing the output file failed");
+}
+
+}  // namespace springlab

@@ -1,0 +1,104 @@
+#include "springlab/rope_simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace springlab {
+
+RopeParameters readRopeParameters(SceneReader& r, const Vec3& gravity, int dimension) {
+  RopeParameters p;
+  p.numOfMasses = r.integer("masses", 2);
+  p.mass = r.positive("mass");
+  p.springConstant = r.positive("spring_constant");
+  p.springLength = r.positive("rest_length");
+  p.springFrictionConstant = r.nonNegative("spring_friction");
+  p.ropeConnectionPos = r.vec3("connection");
+  p.ropeConnectionVel = r.vec3("connection_velocity");
+  p.direction = r.vec3("direction");
+  if (p.direction.norm() < 1e-12) r.fail("direction", "must not be the zero vector");
+  p.direction.normalize();
+  p.airFrictionConstant = r.nonNegative("air_friction");
+  SceneReader g = r.object("ground");
+  p.ground.height = g.number("height");
+  p.ground.repulsion = g.nonNegative("repulsion");
+  p.ground.friction = g.nonNegative("friction");
+  p.ground.absorption = g.nonNegative("absorption");
+  g.rejectUnknownKeys();
+  p.gravitation = gravity;
+
+  // A 2D rope lives in the plane z = 0 and must stay there.
+  if (dimension == 2) {
+    if (p.ropeConnectionPos.z() != 0.0) r.fail("connection", "must have z = 0 in a 2D scene");
+    if (p.ropeConnectionVel.z() != 0.0) r.fail("connection_velocity", "must have z = 0 in a 2D scene");
+    if (p.direction.z() != 0.0) r.fail("direction", "must have z = 0 in a 2D scene");
+  }
+  return p;
+}
+
+RopeSimulation::RopeSimulation(int dim, const RopeParameters& p)
+    : Simulation(dim),
+      ropeConnectionPos(p.ropeConnectionPos),
+      ropeConnectionVel(p.ropeConnectionVel),
+      springConstant(p.springConstant),
+      springFrictionConstant(p.springFrictionConstant),
+      airFrictionConstant(p.airFrictionConstant),
+      ground(p.ground),
+      gravityY_(p.gravitation.y()),
+      initialConnectionPos_(p.ropeConnectionPos),
+      initialConnectionVel_(p.ropeConnectionVel) {
+  gravitation = p.gravitation;
+}
+
+void RopeSimulation::finishBuilding() { markInitialState(); }
+
+void RopeSimulation::setControlVelocity(const Vec3& velocity) {
+  ropeConnectionVel = velocity;
+  if (dimension == 2) ropeConnectionVel.z() = 0.0;
+}
+
+std::vector<Parameter> RopeSimulation::parameters() {
+  return {
+      {"spring constant", "N/m", &springConstant, 1.0, 1.0e6, true},
+      {"spring friction", "N s/m", &springFrictionConstant, 0.0, 10.0, false},
+      {"air friction", "N s/m", &airFrictionConstant, 0.0, 1.0, false},
+      {"gravity y", "m/s^2", &gravityY_, -30.0, 30.0, false},
+      {"ground height", "m", &ground.height, -10.0, 10.0, false},
+      {"ground repulsion", "N/m", &ground.repulsion, 0.0, 1.0e4, true},
+      {"ground friction", "N s/m", &ground.friction, 0.0, 10.0, false},
+      {"ground absorption", "N s/m", &ground.absorption, 0.0, 10.0, false},
+  };
+}
+
+void RopeSimulation::parametersChanged() {
+  // Every spring of the rope shares the rope's constants.
+  for (Spring& s : springs) {
+    s.springConstant = springConstant;
+    s.frictionConstant = springFrictionConstant;
+  }
+  gravitation.y() = gravityY_;
+}
+
+double RopeSimulation::maxAngularFrequency() const {
+  // The ground adds a spring of stiffness `repulsion` to any mass below it.
+  const double w = springMaxAngularFrequency(*this);
+  double minMass = INFINITY;
+  for (const Mass& m : masses) minMass = std::min(minMass, m.m);
+  if (masses.empty()) return w;
+  return std::sqrt(w * w + ground.repulsion / minMass);
+}
+
+void RopeSimulation::onReset() {
+  ropeConnectionPos = initialConnectionPos_;
+  ropeConnectionVel = initialConnectionVel_;
+}
+
+double RopeSimulation::otherPotentialEnergy(const State& s) const {
+  double e = 0.0;
+  for (const Vec3& x : s.pos) {
+    const double depth = ground.height - x.y();
+    if (depth > 0.0) e += 0.5 * ground.repulsion * depth * depth;
+  }
+  return e;
+}
+
+}  // namespace springlab

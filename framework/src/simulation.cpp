@@ -1,0 +1,118 @@
+#include "springlab/simulation.hpp"
+
+#include <stdexcept>
+
+#include "springlab/symplectic_euler.hpp"
+
+namespace springlab {
+
+Simulation::Simulation(int dim) : dimension(dim), integrator_(std::make_unique<SymplecticEuler>()) {
+  if (dim != 2 && dim != 3) throw std::invalid_argument("Simulation: dimension must be 2 or 3");
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::init() {
+  force.assign(masses.size(), Vec3::Zero());
+}
+
+void Simulation::solve() {
+  evaluateForces(state, force);
+}
+
+void Simulation::simulate(double dt) {
+  // Integrate, then let the scene move its kinematic masses and project contacts.
+  integrator_->step(*this, dt);
+  ++stats.steps;
+  afterStep(dt);
+
+  // A mass the user drags follows the mouse exactly.
+  if (grabbed_) {
+    const int i = *grabbed_;
+    state.vel[i] = (grabTarget_ - state.pos[i]) / dt;
+    state.pos[i] = grabTarget_;
+  }
+
+  if (blowUpCheckEnabled_) blowUpCheck_.check(*this, dt);
+}
+
+void Simulation::operate(double dt) {
+  init();
+  solve();
+  simulate(dt);
+}
+
+void Simulation::evaluateForces(const State& s, std::vector<Vec3>& f) {
+  f.assign(masses.size(), Vec3::Zero());
+  accumulateForces(s, f);
+  ++stats.forceEvaluations;
+}
+
+double Simulation::inverseMass(int i) const {
+  if (grabbed_ && *grabbed_ == i) return 0.0;
+  return masses[i].inverseMass();
+}
+
+void Simulation::setIntegrator(std::unique_ptr<Integrator> integrator) {
+  if (!integrator) throw std::invalid_argument("Simulation::setIntegrator: null integrator");
+  integrator_ = std::move(integrator);
+  integrator_->reset();
+}
+
+void Simulation::markInitialState() {
+  if (state.pos.size() != masses.size() || state.vel.size() != masses.size()) {
+    throw std::logic_error("Simulation: state and masses differ in size after building the scene");
+  }
+  initialState_ = state;
+  force.assign(masses.size(), Vec3::Zero());
+  blowUpCheck_.arm(*this);
+}
+
+void Simulation::reset() {
+  state = initialState_;
+  force.assign(masses.size(), Vec3::Zero());
+  stats = Stats{};
+  grabbed_.reset();
+  integrator_->reset();
+  onReset();
+  blowUpCheck_.arm(*this);
+}
+
+Energies Simulation::energies() const {
+  Energies e;
+  for (int i = 0; i < numOfMasses(); ++i) {
+    e.kinetic += 0.5 * masses[i].m * state.vel[i].squaredNorm();
+    e.gravitational -= masses[i].m * gravitation.dot(state.pos[i]);
+  }
+  for (const Spring& s : springs) {
+    const double stretch = (state.pos[s.mass1] - state.pos[s.mass2]).norm() - s.springLength;
+    e.elastic += 0.5 * s.springConstant * stretch * stretch;
+  }
+  e.other = otherPotentialEnergy(state);
+  return e;
+}
+
+Vec3 Simulation::momentum() const {
+  Vec3 p = Vec3::Zero();
+  for (int i = 0; i < numOfMasses(); ++i) p += masses[i].m * state.vel[i];
+  return p;
+}
+
+double Simulation::maxAngularFrequency() const { return springMaxAngularFrequency(*this); }
+
+void Simulation::grab(int index, const Vec3& target) {
+  if (index < 0 || index >= numOfMasses()) throw std::out_of_range("Simulation::grab: no such mass");
+  grabbed_ = index;
+  grabTarget_ = target;
+}
+
+void Simulation::release() { grabbed_.reset(); }
+
+void Simulation::togglePinned(int index) {
+  if (index < 0 || index >= numOfMasses()) throw std::out_of_range("Simulation::togglePinned: no such mass");
+  masses[index].pinned = !masses[index].pinned;
+  state.vel[index].setZero();
+  integrator_->reset();
+}
+
+}  // namespace springlab

@@ -1,0 +1,20 @@
+#include "springlab/symplectic_euler.hpp"
+
+#include "springlab/simulation.hpp"
+
+namespace springlab {
+
+void SymplecticEuler::step(Simulation& sim, double dt) {
+  // Forces at the current state (one evaluation per step).
+  sim.evaluateForces(sim.state, sim.force);
+
+  // Kick, then drift with the new velocity: v += F/m dt; x += v dt.
+  State& s = sim.state;
+  for (int i = 0; i < sim.numOfMasses(); ++i) {
+    s.vel[i] += sim.force[i] * (sim.inverseMass(i) * dt);
+    s.pos[i] += s.vel[i] * dt;
+  }
+  s.time += dt;
+}
+
+}  // namespace springlab
