@@ -37,8 +37,8 @@ void Simulation::simulate(double dt) {
 }
 
 void Simulation::operate(double dt) {
-  init();
-  solve();
+  // The integrator performs init() and solve() itself, as often as its method needs
+  // (once for Euler, four times for RK4), so operate is one simulate().
   simulate(dt);
 }
 

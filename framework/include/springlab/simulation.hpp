@@ -56,7 +56,7 @@ class Simulation {
   void init();                // zero every force
   void solve();               // add up the forces at the current state into `force`
   void simulate(double dt);   // advance one step with the current integrator
-  void operate(double dt);    // init(); solve(); simulate(dt)
+  void operate(double dt);    // one step: the integrator calls init() and solve() itself
 
   // ---- what integrators use ----------------------------------------------------------
   // Forces at an arbitrary state (not necessarily the current one); counts one evaluation.
