@@ -1,3 +1,0 @@
-file(REMOVE_RECURSE
-  "libspringlab_rope_oracle.a"
-)

@@ -1,2 +1,0 @@
-# Empty dependencies file for springlab-reference.
-# This may be replaced when dependencies are built.
