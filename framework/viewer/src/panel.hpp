@@ -1,0 +1,65 @@
+#pragma once
+// The ImGui parts of the window: the HUD (top left), the control panel (right) and the
+// messages that stay on screen while something is wrong (a missing exercise, a blow-up).
+// They only draw and record what the user asked for; viewer.cpp applies the requests, so an
+// exception thrown by the simulation never interrupts an ImGui window half-way.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "springlab/diagnostics.hpp"
+#include "springlab/simulation.hpp"
+
+namespace springlab::viewer {
+
+// What the loop runs: edited by keys and by the panel.
+struct RunControl {
+  bool paused = false;
+  double dt = 0.002;  // s
+  int substeps = 1;   // steps per frame
+  bool drawMasses = true;
+  bool wireframe = false;
+  // Requests, consumed by the loop in the same frame.
+  bool stepRequested = false;
+  bool resetRequested = false;
+  bool screenshotRequested = false;
+  std::optional<std::string> integratorRequested;
+  bool parametersEdited = false;
+};
+
+// An exercise the student has not written yet, from NotImplemented.
+struct MissingExercise {
+  std::string id;
+  std::string title;
+  std::string handoutSection;
+};
+
+// Everything the HUD shows.
+struct HudInfo {
+  std::string sceneName;
+  std::string tree;  // "student" or "reference"
+  std::string kind;  // "rope", or empty without a simulation
+  int masses = 0;
+  double time = 0.0;
+  double dt = 0.0;
+  int substeps = 0;
+  std::string integrator;
+  std::optional<Energies> energies;  // nullopt when they could not be computed
+  float fps = 0.0f;
+  bool paused = false;
+};
+
+void drawHud(const HudInfo& hud);
+
+// The control panel. `sim` may be null (the scene could not be built); stableDt is
+// predictedStableDt of the current integrator (0: no stable dt, negative: unknown).
+void drawControls(Simulation* sim, const std::vector<std::string>& integratorNames, const std::string& integrator,
+                  double stableDt, RunControl& control);
+
+// The large red panel in the middle of the window.
+void drawMissingExercise(const MissingExercise& missing);
+
+// Why the run stopped (a blow-up, or another error of the simulation), in red at the bottom.
+void drawRunError(const std::string& headline, const std::string& message);
+
+}  // namespace springlab::viewer

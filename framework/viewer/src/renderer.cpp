@@ -1,0 +1,258 @@
+#include "renderer.hpp"
+
+#include <GL/glew.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace springlab::viewer {
+
+namespace {
+
+// One program for everything: flat colours for lines and the grid, a two-sided headlight
+// for triangles (cloth has no inside), and round points cut out of square point sprites.
+const char* const kVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aColor;
+layout(location = 2) in vec3 aNormal;
+uniform mat4 uViewProj;
+uniform float uPointSize;
+out vec3 vColor;
+out vec3 vNormal;
+out vec3 vPosition;
+void main() {
+  gl_Position = uViewProj * vec4(aPosition, 1.0);
+  gl_PointSize = uPointSize;
+  vColor = aColor;
+  vNormal = aNormal;
+  vPosition = aPosition;
+}
+)";
+
+const char* const kFragmentShader = R"(#version 330 core
+in vec3 vColor;
+in vec3 vNormal;
+in vec3 vPosition;
+uniform int uShading;
+uniform vec3 uEye;
+out vec4 fragColor;
+void main() {
+  vec3 c = vColor;
+  if (uShading == 1) {
+    vec3 n = normalize(vNormal);
+    vec3 l = normalize(uEye - vPosition);
+    c *= 0.35 + 0.65 * abs(dot(n, l));
+  } else if (uShading == 2) {
+    vec2 d = 2.0 * gl_PointCoord - 1.0;
+    float r2 = dot(d, d);
+    if (r2 > 1.0) discard;
+    c *= 1.0 - 0.35 * r2;  // a hint of a sphere
+  }
+  fragColor = vec4(c, 1.0);
+}
+)";
+
+GLuint compile(GLenum type, const char* source, std::string& error) {
+  const GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    error = std::string("shader compilation failed: ") + log;
+    glDeleteShader(shader);
+    return 0;
+  }
+  return shader;
+}
+
+glm::vec3 toGlm(const Vec3& v) {
+  return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
+}
+
+}  // namespace
+
+Renderer::~Renderer() {
+  if (vbo_) glDeleteBuffers(1, &vbo_);
+  if (vao_) glDeleteVertexArrays(1, &vao_);
+  if (program_) glDeleteProgram(program_);
+}
+
+bool Renderer::init(std::string& error) {
+  const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader, error);
+  if (!vs) return false;
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader, error);
+  if (!fs) {
+    glDeleteShader(vs);
+    return false;
+  }
+  program_ = glCreateProgram();
+  glAttachShader(program_, vs);
+  glAttachShader(program_, fs);
+  glLinkProgram(program_);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
+    error = std::string("shader linking failed: ") + log;
+    return false;
+  }
+  uViewProj_ = glGetUniformLocation(program_, "uViewProj");
+  uShading_ = glGetUniformLocation(program_, "uShading");
+  uPointSize_ = glGetUniformLocation(program_, "uPointSize");
+  uEye_ = glGetUniformLocation(program_, "uEye");
+
+  // One streaming buffer, refilled for every draw call (a few thousand vertices at most).
+  glGenVertexArrays(1, &vao_);
+  glGenBuffers(1, &vbo_);
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  const auto stride = static_cast<GLsizei>(sizeof(Vertex));
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(Vertex, position)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(Vertex, color)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(Vertex, normal)));
+  glBindVertexArray(0);
+
+  // Wide lines are optional in the core profile: use them only where the driver has them.
+  GLfloat range[2] = {1.0f, 1.0f};
+  glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
+  maxLineWidth_ = range[1];
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  return true;
+}
+
+void Renderer::clear(int width, int height) {
+  glViewport(0, 0, width, height);
+  glClearColor(0.11f, 0.12f, 0.15f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+}
+
+void Renderer::draw(unsigned mode, const std::vector<Vertex>& vertices, Shading shading, float pointSize,
+                    const glm::mat4& viewProj, const glm::vec3& eye) {
+  if (vertices.empty()) return;
+  glUseProgram(program_);
+  glUniformMatrix4fv(uViewProj_, 1, GL_FALSE, glm::value_ptr(viewProj));
+  glUniform1i(uShading_, static_cast<int>(shading));
+  glUniform1f(uPointSize_, pointSize);
+  glUniform3fv(uEye_, 1, glm::value_ptr(eye));
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(),
+               GL_STREAM_DRAW);
+  glDrawArrays(mode, 0, static_cast<GLsizei>(vertices.size()));
+  glBindVertexArray(0);
+}
+
+void Renderer::drawGround(float height, const glm::vec2& centre, float halfSize, float spacing,
+                          const glm::mat4& viewProj) {
+  // The plane, then the grid lines a hair above it so that they win the depth test.
+  const glm::vec3 plane(0.22f, 0.23f, 0.26f);
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  const float x0 = centre.x - halfSize, x1 = centre.x + halfSize;
+  const float z0 = centre.y - halfSize, z1 = centre.y + halfSize;
+  std::vector<Vertex> quad = {
+      {{x0, height, z0}, plane, up}, {{x1, height, z0}, plane, up}, {{x1, height, z1}, plane, up},
+      {{x0, height, z0}, plane, up}, {{x1, height, z1}, plane, up}, {{x0, height, z1}, plane, up},
+  };
+  draw(GL_TRIANGLES, quad, Shading::Flat, 1.0f, viewProj, glm::vec3(0.0f));
+
+  const glm::vec3 line(0.34f, 0.36f, 0.40f);
+  const float y = height + 1e-3f * halfSize;
+  std::vector<Vertex> grid;
+  const int n = static_cast<int>(std::floor(halfSize / spacing));
+  for (int i = -n; i <= n; ++i) {
+    const float x = centre.x + static_cast<float>(i) * spacing;
+    const float z = centre.y + static_cast<float>(i) * spacing;
+    grid.push_back({{x, y, z0}, line, {}});
+    grid.push_back({{x, y, z1}, line, {}});
+    grid.push_back({{x0, y, z}, line, {}});
+    grid.push_back({{x1, y, z}, line, {}});
+  }
+  glLineWidth(1.0f);
+  draw(GL_LINES, grid, Shading::Flat, 1.0f, viewProj, glm::vec3(0.0f));
+}
+
+void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3>& massColors,
+                              std::optional<int> grabbed, const DrawOptions& options, const glm::mat4& viewProj,
+                              const glm::vec3& eye, float pixelScale) {
+  const auto& pos = sim.state.pos;
+  const std::size_t n = std::min(pos.size(), massColors.size());
+  auto valid = [n](int i) { return i >= 0 && static_cast<std::size_t>(i) < n; };
+
+  // Triangles: smooth normals (the sum of the faces around each mass), a cloth colour tinted
+  // by the force colours.
+  if (options.surfaces && !sim.triangles.empty()) {
+    std::vector<glm::vec3> normals(n, glm::vec3(0.0f));
+    for (const Triangle& t : sim.triangles) {
+      if (!valid(t.a) || !valid(t.b) || !valid(t.c)) continue;
+      const glm::vec3 a = toGlm(pos[t.a]), b = toGlm(pos[t.b]), c = toGlm(pos[t.c]);
+      const glm::vec3 face = glm::cross(b - a, c - a);
+      normals[t.a] += face;
+      normals[t.b] += face;
+      normals[t.c] += face;
+    }
+    const glm::vec3 cloth(0.55f, 0.65f, 0.85f);
+    std::vector<Vertex> tris;
+    tris.reserve(3 * sim.triangles.size());
+    for (const Triangle& t : sim.triangles) {
+      if (!valid(t.a) || !valid(t.b) || !valid(t.c)) continue;
+      for (int i : {t.a, t.b, t.c}) {
+        const float len = glm::length(normals[i]);
+        const glm::vec3 normal = len > 0.0f ? normals[i] / len : glm::vec3(0, 1, 0);
+        tris.push_back({toGlm(pos[i]), glm::mix(cloth, massColors[i], 0.3f), normal});
+      }
+    }
+    if (options.surfaceWireframe) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    draw(GL_TRIANGLES, tris, options.surfaceWireframe ? Shading::Flat : Shading::Lit, 1.0f, viewProj, eye);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+
+  // Springs, coloured by the average force colour of their ends.
+  if (options.springs) {
+    std::vector<Vertex> lines;
+    lines.reserve(2 * sim.springs.size());
+    for (const Spring& s : sim.springs) {
+      if (!valid(s.mass1) || !valid(s.mass2)) continue;
+      const glm::vec3 c = 0.5f * (massColors[s.mass1] + massColors[s.mass2]);
+      lines.push_back({toGlm(pos[s.mass1]), c, {}});
+      lines.push_back({toGlm(pos[s.mass2]), c, {}});
+    }
+    glLineWidth(std::min(2.0f * pixelScale, maxLineWidth_));
+    draw(GL_LINES, lines, Shading::Flat, 1.0f, viewProj, eye);
+    glLineWidth(1.0f);
+  }
+
+  // Masses: free ones in their force colour, pinned ones larger and white, the grabbed one
+  // yellow (drawn last, so it is on top of its neighbours).
+  if (options.masses) {
+    std::vector<Vertex> free, pinned, held;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (grabbed && static_cast<std::size_t>(*grabbed) == i) {
+        held.push_back({toGlm(pos[i]), glm::vec3(1.0f, 0.9f, 0.2f), {}});
+      } else if (i < sim.masses.size() && sim.masses[i].pinned) {
+        pinned.push_back({toGlm(pos[i]), glm::vec3(0.95f, 0.95f, 1.0f), {}});
+      } else {
+        free.push_back({toGlm(pos[i]), massColors[i], {}});
+      }
+    }
+    draw(GL_POINTS, free, Shading::RoundPoint, 7.0f * pixelScale, viewProj, eye);
+    draw(GL_POINTS, pinned, Shading::RoundPoint, 12.0f * pixelScale, viewProj, eye);
+    draw(GL_POINTS, held, Shading::RoundPoint, 14.0f * pixelScale, viewProj, eye);
+  }
+}
+
+}  // namespace springlab::viewer

@@ -1,0 +1,65 @@
+#pragma once
+// Draws a simulation with OpenGL 3.3 core: springs as lines, masses as round points,
+// triangles shaded (or as wireframe) and a ground grid. It knows nothing of windows or GUI.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "springlab/simulation.hpp"
+
+namespace springlab::viewer {
+
+// What to draw this frame (the W key switches between the two looks of a mesh).
+struct DrawOptions {
+  bool masses = true;
+  bool springs = true;
+  bool surfaces = true;        // shaded triangles, when the scene has any
+  bool surfaceWireframe = false;
+};
+
+class Renderer {
+ public:
+  Renderer() = default;
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Compile the shaders and create the buffers; needs a current GL context (after glewInit).
+  bool init(std::string& error);
+
+  // Start a frame: viewport, background colour, depth buffer.
+  void clear(int width, int height);
+
+  // A grey plane y = height with a grid of `spacing` metres, a square around centre (x, z).
+  void drawGround(float height, const glm::vec2& centre, float halfSize, float spacing, const glm::mat4& viewProj);
+
+  // Masses coloured by `massColors`, springs by the average of their two masses. Pinned
+  // masses are drawn larger and white, the grabbed one yellow. pixelScale scales point sizes
+  // (1 for an 800 pixel high window).
+  void drawSimulation(const Simulation& sim, const std::vector<glm::vec3>& massColors, std::optional<int> grabbed,
+                      const DrawOptions& options, const glm::mat4& viewProj, const glm::vec3& eye, float pixelScale);
+
+ private:
+  struct Vertex {
+    glm::vec3 position;
+    glm::vec3 color;
+    glm::vec3 normal;  // zero for unlit lines and points
+  };
+  enum class Shading : int { Flat = 0, Lit = 1, RoundPoint = 2 };
+
+  void draw(unsigned mode, const std::vector<Vertex>& vertices, Shading shading, float pointSize,
+            const glm::mat4& viewProj, const glm::vec3& eye);
+
+  unsigned program_ = 0;
+  unsigned vao_ = 0;
+  unsigned vbo_ = 0;
+  int uViewProj_ = -1;
+  int uShading_ = -1;
+  int uPointSize_ = -1;
+  int uEye_ = -1;
+  float maxLineWidth_ = 1.0f;
+};
+
+}  // namespace springlab::viewer

@@ -1,0 +1,576 @@
+// The viewer's window, main loop and input. Rendering (renderer.cpp), the GUI (panel.cpp),
+// the camera (camera.cpp), picking (picking.cpp) and screenshots (snapshot.cpp) live apart;
+// this file ties them to one Simulation and keeps running whatever the simulation throws.
+#include "springlab/viewer.hpp"
+
+#include <GL/glew.h>
+// GLEW before GLFW: GLFW must not pull in the system's gl.h first.
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "camera.hpp"
+#include "force_colors.hpp"
+#include "panel.hpp"
+#include "picking.hpp"
+#include "renderer.hpp"
+#include "snapshot.hpp"
+#include "springlab/rope_simulation.hpp"
+
+namespace springlab {
+
+namespace {
+
+using viewer::Camera;
+using viewer::MissingExercise;
+using viewer::RunControl;
+
+constexpr double kControlSpeed = 3.0;  // m/s, the fixed end while an arrow key is held
+constexpr float kPickPixels = 25.0f;   // how far from a mass a click may land
+
+MissingExercise missingFrom(const NotImplemented& e) { return {e.exerciseId(), e.title(), e.handoutSection()}; }
+
+glm::vec3 toGlm(const Vec3& v) {
+  return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
+}
+
+// The scene: what loadScene gave, or only the settings when building it threw NotImplemented.
+struct Scene {
+  SceneSettings settings;
+  std::unique_ptr<Simulation> sim;
+  std::optional<MissingExercise> missingAtLoad;
+};
+
+// Settings of a scene whose simulation could not be built, read again without building it
+// (loadScene drops them when the lab's factory throws).
+SceneSettings readSettingsOnly(const std::string& path) {
+  SceneSettings s;
+  s.file = path;
+  s.name = std::filesystem::path(path).stem().string();
+  try {
+    SceneReader reader = SceneReader::fromFile(path);
+    s.name = reader.string("name");
+    s.dt = reader.positive("dt");
+    s.substeps = reader.integer("substeps", 1);
+    s.integrator = reader.string("integrator");
+  } catch (const SceneError&) {
+    // Keep the defaults: the message about the missing exercise matters more.
+  }
+  return s;
+}
+
+// The region the camera frames at the start and the ground drawn under it.
+struct Framing {
+  glm::vec3 lo{-2.0f, -1.5f, -2.0f};
+  glm::vec3 hi{2.0f, 0.5f, 2.0f};
+  float groundHeight = -1.5f;
+};
+
+Framing frameScene(const Simulation* sim) {
+  Framing f;
+  if (!sim || sim->state.pos.empty()) return f;
+
+  // A rope: everywhere it can reach, a box of its length around the connection point,
+  // cut at the ground below and a little above the connection point.
+  if (const auto* rope = dynamic_cast<const RopeSimulation*>(sim)) {
+    double length = 0.0;
+    for (const Spring& s : rope->springs) length += s.springLength;
+    const auto L = static_cast<float>(std::max(length, 0.5));
+    const glm::vec3 c = toGlm(rope->ropeConnectionPos);
+    f.groundHeight = static_cast<float>(rope->ground.height);
+    f.lo = glm::vec3(c.x - L, std::max(f.groundHeight, c.y - L), c.z - 0.5f * L);
+    f.hi = glm::vec3(c.x + L, c.y + 0.15f * L, c.z + 0.5f * L);
+    if (rope->dimension == 2) f.lo.z = f.hi.z = c.z;
+    return f;
+  }
+
+  // Anything else: its bounding box with a margin, the ground at its lowest point.
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (const Vec3& p : sim->state.pos) {
+    lo = glm::min(lo, toGlm(p));
+    hi = glm::max(hi, toGlm(p));
+  }
+  const float margin = 0.1f * std::max(glm::length(hi - lo), 0.1f);
+  f.lo = lo - glm::vec3(margin);
+  f.hi = hi + glm::vec3(margin);
+  f.groundHeight = lo.y;
+  return f;
+}
+
+// A round grid spacing (1, 2 or 5 times a power of ten) giving about ten lines per half side.
+float gridSpacing(float halfSize) {
+  const float raw = halfSize / 10.0f;
+  const float decade = std::pow(10.0f, std::floor(std::log10(raw)));
+  for (float m : {1.0f, 2.0f, 5.0f}) {
+    if (m * decade >= raw) return m * decade;
+  }
+  return 10.0f * decade;
+}
+
+// Everything the window owns; GLFW callbacks find it through the window's user pointer.
+class Viewer {
+ public:
+  Viewer(const Registry& registry, Scene scene, const ViewerOptions& options)
+      : registry_(registry), options_(options), scene_(std::move(scene)) {
+    control_.dt = scene_.settings.dt > 0.0 ? scene_.settings.dt : 0.002;
+    control_.substeps = std::max(scene_.settings.substeps, 1);
+    missing_ = scene_.missingAtLoad;
+  }
+
+  int run();
+
+ private:
+  enum class Drag { None, Orbit, Zoom, Pan, Grab };
+
+  static Viewer& from(GLFWwindow* window) { return *static_cast<Viewer*>(glfwGetWindowUserPointer(window)); }
+  void onKey(int key, int action, int mods);
+  void onMouseButton(int button, int action, int mods);
+  void onCursor(double x, double y);
+  void onScroll(double dy);
+
+  bool openWindow();
+  void closeWindow();
+  viewer::Ray cursorRay() const;
+  std::optional<int> pickUnderCursor() const;
+
+  // One frame: apply requests and held keys, step, draw.
+  void interact();
+  void advance();
+  void draw();
+  void drawGui();
+
+  // Runs f; a missing exercise or a failing simulation is shown instead of ending the viewer.
+  template <class F>
+  void guarded(F&& f);
+
+  const Registry& registry_;
+  const ViewerOptions& options_;
+  Scene scene_;
+  RunControl control_;
+  Camera camera_;
+  Framing framing_;
+  std::unique_ptr<viewer::Renderer> renderer_;
+  GLFWwindow* window_ = nullptr;
+  bool imguiReady_ = false;
+
+  std::optional<MissingExercise> missing_;
+  std::string runErrorHeadline_;
+  std::string runError_;  // empty while the run is fine
+
+  Drag drag_ = Drag::None;
+  double cursorX_ = 0.0, cursorY_ = 0.0;
+  std::optional<int> grabbed_;
+  glm::vec3 grabPlanePoint_{0.0f};
+  Vec3 controlVelocity_ = Vec3::Zero();
+
+  float fps_ = 0.0f;
+  int framesSinceFps_ = 0;
+  std::chrono::steady_clock::time_point fpsStart_ = std::chrono::steady_clock::now();
+};
+
+template <class F>
+void Viewer::guarded(F&& f) {
+  try {
+    f();
+  } catch (const NotImplemented& e) {
+    // The student's next exercise: say which, stop stepping, keep drawing.
+    if (!missing_) std::cerr << "springlab view: " << e.what() << "\n";
+    missing_ = missingFrom(e);
+  } catch (const BlowUp& e) {
+    control_.paused = true;
+    runErrorHeadline_ = "The simulation blew up";
+    runError_ = e.what();
+    std::cerr << "springlab view: " << e.what() << "\n";
+  } catch (const std::exception& e) {
+    control_.paused = true;
+    runErrorHeadline_ = "The simulation failed";
+    runError_ = e.what();
+    std::cerr << "springlab view: " << e.what() << "\n";
+  }
+}
+
+bool Viewer::openWindow() {
+  // OpenGL 3.3 core with 4x multisampling; llvmpipe under Xvfb gives all of it.
+  glfwSetErrorCallback([](int, const char* description) { std::cerr << "glfw: " << description << "\n"; });
+  if (!glfwInit()) return false;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+#ifdef __APPLE__
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+#endif
+  glfwWindowHint(GLFW_SAMPLES, 4);
+  const std::string title = "springlab: " + scene_.settings.name + " (" + options_.tree + ")";
+  window_ = glfwCreateWindow(std::max(options_.width, 64), std::max(options_.height, 64), title.c_str(), nullptr,
+                             nullptr);
+  if (!window_) {
+    glfwTerminate();
+    return false;
+  }
+  glfwMakeContextCurrent(window_);
+  // Interactive runs follow the display; --frames runs as fast as it can.
+  glfwSwapInterval(options_.frames > 0 ? 0 : 1);
+  return true;
+}
+
+void Viewer::closeWindow() {
+  renderer_.reset();  // while its context is still current
+  if (imguiReady_) {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    imguiReady_ = false;
+  }
+  if (window_) glfwDestroyWindow(window_);
+  window_ = nullptr;
+  glfwTerminate();
+}
+
+int Viewer::run() {
+  if (!openWindow()) {
+    std::cerr << "springlab view: no display: run under xvfb-run, or use `./springlab run` which does it for you\n";
+    return 6;
+  }
+
+  glewExperimental = GL_TRUE;
+  const GLenum glewStatus = glewInit();
+  if (glewStatus != GLEW_OK) {
+    std::cerr << "springlab view: could not load OpenGL functions: "
+              << reinterpret_cast<const char*>(glewGetErrorString(glewStatus)) << "\n";
+    closeWindow();
+    return 6;
+  }
+  while (glGetError() != GL_NO_ERROR) {
+  }  // glewInit may leave an error behind in a core context
+
+  renderer_ = std::make_unique<viewer::Renderer>();
+  std::string error;
+  if (!renderer_->init(error)) {
+    std::cerr << "springlab view: " << error << "\n";
+    closeWindow();
+    return 6;
+  }
+
+  // Our callbacks first: ImGui's backend installs its own and chains to these.
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int mods) { from(w).onKey(key, action, mods); });
+  glfwSetMouseButtonCallback(window_,
+                             [](GLFWwindow* w, int b, int action, int mods) { from(w).onMouseButton(b, action, mods); });
+  glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) { from(w).onCursor(x, y); });
+  glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) { from(w).onScroll(dy); });
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the student's folder
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  imguiReady_ = true;
+
+  // Frame the region the scene can reach.
+  framing_ = frameScene(scene_.sim.get());
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  camera_.frame(framing_.lo, framing_.hi, static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
+
+  int exitCode = 0;
+  for (int frame = 1; !glfwWindowShouldClose(window_); ++frame) {
+    glfwPollEvents();
+    interact();
+    advance();
+    draw();
+
+    // The picture is complete (scene and GUI) in the back buffer: save it before the swap.
+    const bool last = options_.frames > 0 && frame >= options_.frames;
+    glfwGetFramebufferSize(window_, &width, &height);
+    if (control_.screenshotRequested) {
+      control_.screenshotRequested = false;
+      const std::string name = viewer::screenshotName();
+      if (viewer::writeSnapshot(name, width, height, error)) {
+        std::cout << "screenshot: " << std::filesystem::absolute(name).string() << std::endl;
+      } else {
+        std::cerr << "springlab view: " << error << "\n";
+      }
+    }
+    if (last && !options_.snapshot.empty()) {
+      if (viewer::writeSnapshot(options_.snapshot, width, height, error)) {
+        std::cout << "snapshot: " << options_.snapshot << std::endl;
+      } else {
+        std::cerr << "springlab view: " << error << "\n";
+        exitCode = 5;
+      }
+    }
+    glfwSwapBuffers(window_);
+
+    // Frames per second over half-second windows.
+    ++framesSinceFps_;
+    const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - fpsStart_).count();
+    if (elapsed >= 0.5) {
+      fps_ = static_cast<float>(framesSinceFps_ / elapsed);
+      framesSinceFps_ = 0;
+      fpsStart_ = now;
+    }
+    if (last) break;
+  }
+  if (options_.frames > 0) std::cout << "viewer: " << fps_ << " frames/s" << std::endl;
+  closeWindow();
+  return exitCode;
+}
+
+// ---- input --------------------------------------------------------------------------------
+
+void Viewer::onKey(int key, int action, int mods) {
+  (void)mods;
+  if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+  switch (key) {
+    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, GLFW_TRUE); break;
+    case GLFW_KEY_P: control_.paused = !control_.paused; break;
+    case GLFW_KEY_N: control_.stepRequested = true; break;
+    case GLFW_KEY_R: control_.resetRequested = true; break;
+    case GLFW_KEY_W:
+      // A mesh switches between shaded and wireframe; a rope shows or hides its masses.
+      if (scene_.sim && !scene_.sim->triangles.empty()) {
+        control_.wireframe = !control_.wireframe;
+      } else {
+        control_.drawMasses = !control_.drawMasses;
+      }
+      break;
+    case GLFW_KEY_S:
+    case GLFW_KEY_F12: control_.screenshotRequested = true; break;
+    default: break;
+  }
+}
+
+void Viewer::onMouseButton(int button, int action, int mods) {
+  if (action == GLFW_RELEASE) {
+    if (drag_ == Drag::Grab && scene_.sim) scene_.sim->release();
+    drag_ = Drag::None;
+    grabbed_.reset();
+    return;
+  }
+  if (ImGui::GetIO().WantCaptureMouse) return;
+  glfwGetCursorPos(window_, &cursorX_, &cursorY_);
+
+  if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_ALT)) {
+    // Alt + click: pin or unpin the mass under the cursor.
+    if (const auto i = pickUnderCursor()) guarded([&] { scene_.sim->togglePinned(*i); });
+  } else if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_SHIFT)) {
+    // Shift + drag: hold the mass under the cursor in the plane facing the screen through it.
+    if (const auto i = pickUnderCursor()) {
+      grabbed_ = i;
+      grabPlanePoint_ = toGlm(scene_.sim->state.pos[*i]);
+      drag_ = Drag::Grab;
+    }
+  } else if (button == GLFW_MOUSE_BUTTON_LEFT) {
+    drag_ = Drag::Orbit;
+  } else if (button == GLFW_MOUSE_BUTTON_RIGHT) {
+    drag_ = Drag::Zoom;
+  } else if (button == GLFW_MOUSE_BUTTON_MIDDLE) {
+    drag_ = Drag::Pan;
+  }
+}
+
+void Viewer::onCursor(double x, double y) {
+  const auto dx = static_cast<float>(x - cursorX_);
+  const auto dy = static_cast<float>(y - cursorY_);
+  cursorX_ = x;
+  cursorY_ = y;
+  int w = 0, h = 0;
+  glfwGetWindowSize(window_, &w, &h);
+  switch (drag_) {
+    case Drag::Orbit: camera_.orbit(dx, dy); break;
+    case Drag::Zoom: camera_.zoom(std::exp(0.005f * dy)); break;
+    case Drag::Pan: camera_.pan(dx, dy, static_cast<float>(h)); break;
+    default: break;  // a grab follows the cursor in interact()
+  }
+}
+
+void Viewer::onScroll(double dy) {
+  if (ImGui::GetIO().WantCaptureMouse) return;
+  camera_.zoom(std::pow(0.9f, static_cast<float>(dy)));
+}
+
+viewer::Ray Viewer::cursorRay() const {
+  int w = 0, h = 0;
+  glfwGetWindowSize(window_, &w, &h);
+  return camera_.ray(cursorX_, cursorY_, w, h);
+}
+
+std::optional<int> Viewer::pickUnderCursor() const {
+  if (!scene_.sim) return std::nullopt;
+  int w = 0, h = 0;
+  glfwGetWindowSize(window_, &w, &h);
+  return viewer::pickMass(scene_.sim->state.pos, cursorRay(), camera_.pixelAngle(h), kPickPixels);
+}
+
+// ---- one frame ------------------------------------------------------------------------------
+
+void Viewer::interact() {
+  Simulation* sim = scene_.sim.get();
+  if (!sim) return;
+
+  // Requests from keys and the panel.
+  if (control_.resetRequested) {
+    control_.resetRequested = false;
+    guarded([&] { sim->reset(); });
+    if (!runError_.empty()) control_.paused = false;  // R resets and continues after a blow-up
+    runError_.clear();
+    if (!scene_.missingAtLoad) missing_.reset();  // try the student's code again
+    controlVelocity_.setZero();
+  }
+  if (control_.integratorRequested) {
+    const std::string name = *control_.integratorRequested;
+    control_.integratorRequested.reset();
+    guarded([&] { sim->setIntegrator(registry_.makeIntegrator(name)); });
+    if (!scene_.missingAtLoad) missing_.reset();  // the missing piece may have been the old method
+  }
+  if (control_.parametersEdited) {
+    control_.parametersEdited = false;
+    guarded([&] { sim->parametersChanged(); });
+  }
+
+  // Held keys drive the fixed end; the velocity is sent only when it changes, so a scene's
+  // own initial connection velocity stays until the user takes over.
+  Vec3 v = Vec3::Zero();
+  if (!ImGui::GetIO().WantCaptureKeyboard) {
+    auto held = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS; };
+    if (held(GLFW_KEY_RIGHT)) v.x() += 1.0;
+    if (held(GLFW_KEY_LEFT)) v.x() -= 1.0;
+    if (held(GLFW_KEY_DOWN)) v.z() += 1.0;
+    if (held(GLFW_KEY_UP)) v.z() -= 1.0;
+    if (held(GLFW_KEY_PAGE_UP) || held(GLFW_KEY_HOME)) v.y() += 1.0;
+    if (held(GLFW_KEY_PAGE_DOWN) || held(GLFW_KEY_END)) v.y() -= 1.0;
+  }
+  v *= kControlSpeed;
+  if (v != controlVelocity_) {
+    controlVelocity_ = v;
+    guarded([&] { sim->setControlVelocity(v); });
+  }
+
+  // A grabbed mass follows the cursor in its plane.
+  if (drag_ == Drag::Grab && grabbed_) {
+    const glm::vec3 t = viewer::intersectPlane(cursorRay(), grabPlanePoint_, camera_.forward());
+    guarded([&] { sim->grab(*grabbed_, Vec3(t.x, t.y, t.z)); });
+  }
+}
+
+void Viewer::advance() {
+  Simulation* sim = scene_.sim.get();
+  const bool step = !control_.paused || control_.stepRequested;
+  control_.stepRequested = false;
+  if (!sim || missing_ || !runError_.empty() || !step) return;
+  guarded([&] {
+    for (int k = 0; k < control_.substeps; ++k) sim->operate(control_.dt);
+  });
+}
+
+void Viewer::draw() {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
+  const glm::mat4 viewProj = camera_.projection(aspect) * camera_.view();
+  renderer_->clear(width, height);
+
+  // The ground under the framed region, then the system coloured by its forces.
+  const glm::vec3 centre = 0.5f * (framing_.lo + framing_.hi);
+  const float halfSize = 1.5f * std::max({framing_.hi.x - framing_.lo.x, framing_.hi.z - framing_.lo.z, 1.0f});
+  renderer_->drawGround(framing_.groundHeight, glm::vec2(centre.x, centre.z), halfSize, gridSpacing(halfSize),
+                        viewProj);
+  if (const Simulation* sim = scene_.sim.get()) {
+    viewer::DrawOptions draw;
+    const bool mesh = !sim->triangles.empty();
+    draw.surfaces = mesh;
+    draw.surfaceWireframe = mesh && control_.wireframe;
+    draw.springs = !mesh || control_.wireframe;
+    draw.masses = mesh ? control_.wireframe : control_.drawMasses;
+    const auto colors = viewer::forceColors(sim->force.size() == sim->state.pos.size()
+                                                ? sim->force
+                                                : std::vector<Vec3>(sim->state.pos.size(), Vec3::Zero()));
+    renderer_->drawSimulation(*sim, colors, sim->grabbed(), draw, viewProj, camera_.eye(),
+                              static_cast<float>(height) / 800.0f);
+  }
+
+  drawGui();
+}
+
+void Viewer::drawGui() {
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+
+  Simulation* sim = scene_.sim.get();
+  viewer::HudInfo hud;
+  hud.sceneName = scene_.settings.name;
+  hud.tree = options_.tree;
+  hud.dt = control_.dt;
+  hud.substeps = control_.substeps;
+  hud.fps = fps_;
+  hud.paused = control_.paused;
+  hud.integrator = scene_.settings.integrator;
+  double stableDt = -1.0;
+  if (sim) {
+    hud.kind = sim->kind();
+    hud.masses = sim->numOfMasses();
+    hud.time = sim->state.time;
+    hud.integrator = sim->integrator().name();
+    try {
+      hud.energies = sim->energies();
+      stableDt = predictedStableDt(sim->integrator(), sim->maxAngularFrequency());
+    } catch (const std::exception&) {
+      // A missing exercise or a broken state: the HUD leaves the numbers out.
+    }
+  }
+  viewer::drawHud(hud);
+  viewer::drawControls(sim, registry_.integratorNames(), hud.integrator, stableDt, control_);
+  if (!runError_.empty()) viewer::drawRunError(runErrorHeadline_, runError_);
+  if (missing_) viewer::drawMissingExercise(*missing_);
+
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+}  // namespace
+
+int runViewer(const Registry& registry, const std::string& scenePath, const ViewerOptions& options) {
+  // Load before opening a window: a bad scene file is an error on the terminal (exit 2);
+  // a missing exercise while building still opens the window and says which one.
+  Scene scene;
+  try {
+    LoadedScene loaded = registry.loadScene(scenePath);
+    scene.settings = loaded.settings;
+    scene.sim = std::move(loaded.sim);
+  } catch (const SceneError& e) {
+    std::cerr << "springlab view: bad scene: " << e.what() << "\n";
+    return 2;
+  } catch (const NotImplemented& e) {
+    std::cerr << "springlab view: " << e.what() << "\n";
+    scene.settings = readSettingsOnly(scenePath);
+    scene.missingAtLoad = missingFrom(e);
+  }
+  if (!options.integrator.empty()) {
+    try {
+      auto integrator = registry.makeIntegrator(options.integrator);
+      if (scene.sim) scene.sim->setIntegrator(std::move(integrator));
+      scene.settings.integrator = options.integrator;
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "springlab view: " << e.what() << "\n";
+      return 2;
+    }
+  }
+
+  Viewer viewer(registry, std::move(scene), options);
+  return viewer.run();
+}
+
+}  // namespace springlab
