@@ -33,7 +33,7 @@ class Camera {
  private:
   glm::vec3 target_{0.0f};
   float distance_ = 5.0f;  // m
-  float yaw_ = 0.35f;      // rad, around +y; 0 looks along -z
+  float yaw_ = 0.25f;      // rad, around +y; 0 looks along -z
   float pitch_ = 0.3f;     // rad, above the horizon
   float fovy_ = 0.7854f;   // rad (45 degrees)
 };

@@ -186,6 +186,29 @@ void Renderer::drawGround(float height, const glm::vec2& centre, float halfSize,
   draw(GL_LINES, grid, Shading::Flat, 1.0f, viewProj, glm::vec3(0.0f));
 }
 
+void Renderer::drawShadow(const Simulation& sim, float height, const glm::mat4& viewProj, float pixelScale) {
+  const auto& pos = sim.state.pos;
+  const glm::vec3 shade(0.07f, 0.075f, 0.085f);
+  auto flat = [&](int i) {
+    const glm::vec3 p = toGlm(pos[i]);
+    return glm::vec3(p.x, height, p.z);
+  };
+  std::vector<Vertex> lines;
+  lines.reserve(2 * sim.springs.size());
+  for (const Spring& s : sim.springs) {
+    if (s.mass1 < 0 || s.mass2 < 0 || static_cast<std::size_t>(std::max(s.mass1, s.mass2)) >= pos.size()) continue;
+    lines.push_back({flat(s.mass1), shade, {}});
+    lines.push_back({flat(s.mass2), shade, {}});
+  }
+  // Drawn right after the ground and before the system: nothing but the ground can be under
+  // it, so the depth test is off (no fighting with the plane).
+  glDisable(GL_DEPTH_TEST);
+  glLineWidth(std::min(3.0f * pixelScale, maxLineWidth_));
+  draw(GL_LINES, lines, Shading::Flat, 1.0f, viewProj, glm::vec3(0.0f));
+  glLineWidth(1.0f);
+  glEnable(GL_DEPTH_TEST);
+}
+
 void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3>& massColors,
                               std::optional<int> grabbed, const DrawOptions& options, const glm::mat4& viewProj,
                               const glm::vec3& eye, float pixelScale) {
@@ -249,7 +272,7 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
         free.push_back({toGlm(pos[i]), massColors[i], {}});
       }
     }
-    draw(GL_POINTS, free, Shading::RoundPoint, 7.0f * pixelScale, viewProj, eye);
+    draw(GL_POINTS, free, Shading::RoundPoint, 8.0f * pixelScale, viewProj, eye);
     draw(GL_POINTS, pinned, Shading::RoundPoint, 12.0f * pixelScale, viewProj, eye);
     draw(GL_POINTS, held, Shading::RoundPoint, 14.0f * pixelScale, viewProj, eye);
   }

@@ -35,6 +35,10 @@ class Renderer {
   // A grey plane y = height with a grid of `spacing` metres, a square around centre (x, z).
   void drawGround(float height, const glm::vec2& centre, float halfSize, float spacing, const glm::mat4& viewProj);
 
+  // A dark copy of the springs flattened onto the ground plane y = height: without it a rope
+  // in the air and a rope on the ground look alike in perspective.
+  void drawShadow(const Simulation& sim, float height, const glm::mat4& viewProj, float pixelScale);
+
   // Masses coloured by `massColors`, springs by the average of their two masses. Pinned
   // masses are drawn larger and white, the grabbed one yellow. pixelScale scales point sizes
   // (1 for an 800 pixel high window).

@@ -88,8 +88,8 @@ Framing frameScene(const Simulation* sim) {
     const auto L = static_cast<float>(std::max(length, 0.5));
     const glm::vec3 c = toGlm(rope->ropeConnectionPos);
     f.groundHeight = static_cast<float>(rope->ground.height);
-    f.lo = glm::vec3(c.x - L, std::max(f.groundHeight, c.y - L), c.z - 0.5f * L);
-    f.hi = glm::vec3(c.x + L, c.y + 0.15f * L, c.z + 0.5f * L);
+    f.lo = glm::vec3(c.x - L, std::max(f.groundHeight, c.y - L), c.z - 0.25f * L);
+    f.hi = glm::vec3(c.x + L, c.y + 0.15f * L, c.z + 0.25f * L);
     if (rope->dimension == 2) f.lo.z = f.hi.z = c.z;
     return f;
   }
@@ -484,7 +484,7 @@ void Viewer::draw() {
 
   // The ground under the framed region, then the system coloured by its forces.
   const glm::vec3 centre = 0.5f * (framing_.lo + framing_.hi);
-  const float halfSize = 1.5f * std::max({framing_.hi.x - framing_.lo.x, framing_.hi.z - framing_.lo.z, 1.0f});
+  const float halfSize = 1.0f * std::max({framing_.hi.x - framing_.lo.x, framing_.hi.z - framing_.lo.z, 1.0f});
   renderer_->drawGround(framing_.groundHeight, glm::vec2(centre.x, centre.z), halfSize, gridSpacing(halfSize),
                         viewProj);
   if (const Simulation* sim = scene_.sim.get()) {
@@ -497,6 +497,7 @@ void Viewer::draw() {
     const auto colors = viewer::forceColors(sim->force.size() == sim->state.pos.size()
                                                 ? sim->force
                                                 : std::vector<Vec3>(sim->state.pos.size(), Vec3::Zero()));
+    renderer_->drawShadow(*sim, framing_.groundHeight, viewProj, static_cast<float>(height) / 800.0f);
     renderer_->drawSimulation(*sim, colors, sim->grabbed(), draw, viewProj, camera_.eye(),
                               static_cast<float>(height) / 800.0f);
   }
