@@ -29,7 +29,12 @@ function(springlab_add_lab)
     set(target springlab_${LAB_NAME}_${tree})
     file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/${folder}/${LAB_DIR}/*.cpp)
     add_library(${target} STATIC ${sources})
-    target_include_directories(${target} PUBLIC ${CMAKE_SOURCE_DIR}/${folder}/${LAB_DIR})
+    # The oracle keeps its headers to itself, so tests always see the graded tree's headers.
+    if(tree STREQUAL "oracle")
+      target_include_directories(${target} PRIVATE ${CMAKE_SOURCE_DIR}/${folder}/${LAB_DIR})
+    else()
+      target_include_directories(${target} PUBLIC ${CMAKE_SOURCE_DIR}/${folder}/${LAB_DIR})
+    endif()
     target_link_libraries(${target} PUBLIC springlab_core PRIVATE springlab_warnings)
     # A skeleton's stubs do not use their parameters yet.
     target_compile_options(${target} PRIVATE -Wno-unused-parameter)

@@ -26,11 +26,11 @@ void Simulation::simulate(double dt) {
   ++stats.steps;
   afterStep(dt);
 
-  // A mass the user drags follows the mouse exactly.
+  // A mass the user drags is held at the mouse, at rest: the mouse may jump by a whole
+  // frame in one substep, and that jump must not turn into a velocity.
   if (grabbed_) {
-    const int i = *grabbed_;
-    state.vel[i] = (grabTarget_ - state.pos[i]) / dt;
-    state.pos[i] = grabTarget_;
+    state.pos[*grabbed_] = grabTarget_;
+    state.vel[*grabbed_].setZero();
   }
 
   if (blowUpCheckEnabled_) blowUpCheck_.check(*this, dt);

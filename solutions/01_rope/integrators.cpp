@@ -63,27 +63,36 @@ class VelocityVerlet final : public Integrator {
   std::string name() const override { return "velocity_verlet"; }
   int order() const override { return 2; }
   double stabilityConstant() const override { return 2.0; }
+  void reset() override { a_.clear(); }
   void step(Simulation& sim, double dt) override {
     const int n = sim.numOfMasses();
-    sim.evaluateForces(sim.state, sim.force);
-    std::vector<Vec3> a(n);
-    for (int i = 0; i < n; ++i) a[i] = acceleration(sim, sim.force, i);
+    // Accelerations at the start: those computed at the end of the last step, once known.
+    if (a_.size() != static_cast<size_t>(n)) {
+      sim.evaluateForces(sim.state, sim.force);
+      a_.resize(n);
+      for (int i = 0; i < n; ++i) a_[i] = acceleration(sim, sim.force, i);
+    }
 
     // Drift to the new positions; velocity-dependent forces see a half-kicked velocity.
     State next = sim.state;
     for (int i = 0; i < n; ++i) {
-      next.pos[i] = velocityVerletPosition({sim.state.pos[i], sim.state.vel[i]}, a[i], dt);
-      next.vel[i] = sim.state.vel[i] + 0.5 * a[i] * dt;
+      next.pos[i] = velocityVerletPosition({sim.state.pos[i], sim.state.vel[i]}, a_[i], dt);
+      next.vel[i] = sim.state.vel[i] + 0.5 * a_[i] * dt;
     }
     sim.evaluateForces(next, sim.force);
 
-    // Kick with the mean of old and new accelerations.
+    // Kick with the mean of old and new accelerations; keep the new ones for the next step.
     for (int i = 0; i < n; ++i) {
-      next.vel[i] = velocityVerletVelocity(sim.state.vel[i], a[i], acceleration(sim, sim.force, i), dt);
+      const Vec3 nextA = acceleration(sim, sim.force, i);
+      next.vel[i] = velocityVerletVelocity(sim.state.vel[i], a_[i], nextA, dt);
+      a_[i] = nextA;
     }
     next.time += dt;
     sim.state = std::move(next);
   }
+
+ private:
+  std::vector<Vec3> a_;  // [n] accelerations at the current state, from the last step
 };
 
 }  // namespace

@@ -65,7 +65,7 @@ RopeLayout buildRope(const RopeParameters& p);
 
 // ---- Exercise 1.8: the fixed end follows the connection point --------------------------
 // Move the connection point by its velocity over dt; it may not go below the ground
-// (there it stops at the ground height and loses its downward velocity). Returns the new
+// (there it stops at the ground height and loses its vertical velocity). Returns the new
 // position and velocity of the connection point, which the fixed mass then copies.
 PhasePoint moveConnection(const PhasePoint& connection, double dt, double groundHeight);
 

@@ -39,7 +39,7 @@ class BlowUp : public std::runtime_error {
 class BlowUpCheck {
  public:
   // Energy growth factor over the scene's energy scale that counts as a blow-up.
-  static constexpr double kRunawayFactor = 1.0e4;
+  static constexpr double kRunawayFactor = 100.0;
 
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
   void check(const Simulation& sim, double dt) const;  // throws BlowUp

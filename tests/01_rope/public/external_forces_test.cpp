@@ -1,0 +1,78 @@
+// Exercises 1.2 and 1.3: gravity, air friction and the ground.
+#include <gtest/gtest.h>
+
+#include "rope.hpp"
+#include "seeded.hpp"
+
+namespace springlab::rope {
+namespace {
+
+using GravityAndAirFriction = springlab::testing::Seeded;
+using GroundContact = springlab::testing::Seeded;
+
+TEST_F(GravityAndAirFriction, WeightIsMassTimesGravitation) {
+  const double m = uniform(0.01, 5);
+  const Vec3 g = vec3(-10, 10);
+  const Vec3 f = gravityAndAirFriction(m, Vec3::Zero(), g, uniform(0, 1));
+  EXPECT_LT((f - m * g).norm(), 1e-12 * std::max(1.0, f.norm()))
+      << "a mass at rest must feel its weight m g and nothing else " << seedText();
+}
+
+TEST_F(GravityAndAirFriction, AirFrictionOpposesVelocity) {
+  const double air = uniform(0.01, 1);
+  const Vec3 v = vec3(-5, 5);
+  const Vec3 f = gravityAndAirFriction(uniform(0.01, 5), v, Vec3::Zero(), air);
+  EXPECT_LT((f + air * v).norm(), 1e-12 * std::max(1.0, f.norm()))
+      << "without gravity the force must be the air friction -c v, opposite to the velocity " << seedText();
+}
+
+Ground someGround(springlab::testing::Seeded& t) {
+  (void)t;
+  return Ground{-1.5, 100.0, 0.2, 2.0};
+}
+
+TEST_F(GroundContact, NoForceAboveTheGround) {
+  const Ground g = someGround(*this);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Vec3 x(uniform(-3, 3), g.height + uniform(1e-6, 3), uniform(-3, 3));
+    ASSERT_EQ(groundContactForce(x, vec3(-3, 3), g), Vec3::Zero())
+        << "the ground must not act on a mass above it " << seedText();
+  }
+}
+
+TEST_F(GroundContact, RepulsionGrowsWithDepth) {
+  const Ground g = someGround(*this);
+  const double depth = uniform(0.01, 0.5);
+  const Vec3 x(uniform(-3, 3), g.height - depth, uniform(-3, 3));
+  const Vec3 f = groundContactForce(x, Vec3::Zero(), g);
+  EXPECT_NEAR(f.y(), g.repulsion * depth, 1e-9)
+      << "a resting mass below the ground must be pushed up by repulsion * depth " << seedText();
+  EXPECT_NEAR(f.x(), 0.0, 1e-12) << "repulsion must be vertical";
+  EXPECT_NEAR(f.z(), 0.0, 1e-12) << "repulsion must be vertical";
+}
+
+TEST_F(GroundContact, FrictionOpposesHorizontalVelocity) {
+  const Ground g = someGround(*this);
+  const Vec3 x(0, g.height - 0.1, 0);
+  const Vec3 v(uniform(-3, 3), 0.0, uniform(-3, 3));
+  const Vec3 f = groundContactForce(x, v, g);
+  EXPECT_NEAR(f.x(), -g.friction * v.x(), 1e-9) << "ground friction must be -friction * v along x " << seedText();
+  EXPECT_NEAR(f.z(), -g.friction * v.z(), 1e-9) << "ground friction must be -friction * v along z " << seedText();
+}
+
+TEST_F(GroundContact, AbsorptionSlowsOnlyDownwardMotion) {
+  const Ground g = someGround(*this);
+  const double depth = 0.1;
+  const Vec3 x(0, g.height - depth, 0);
+  const double speed = uniform(0.1, 3);
+  const Vec3 down = groundContactForce(x, Vec3(0, -speed, 0), g);
+  const Vec3 up = groundContactForce(x, Vec3(0, speed, 0), g);
+  EXPECT_NEAR(down.y(), g.repulsion * depth + g.absorption * speed, 1e-9)
+      << "a mass moving down into the ground must be slowed by absorption * |v_y| on top of repulsion "
+      << seedText();
+  EXPECT_NEAR(up.y(), g.repulsion * depth, 1e-9)
+      << "absorption must not act on a mass moving up out of the ground (it would glue it down) " << seedText();
+}
+
+}  // namespace
+}  // namespace springlab::rope

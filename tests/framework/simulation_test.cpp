@@ -1,0 +1,110 @@
+// The Simulation base and the framework's symplectic Euler, on oscillators with exact answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <springlab/symplectic_euler.hpp>
+
+#include "test_systems.hpp"
+
+namespace springlab {
+namespace {
+
+using testing::AnchoredOscillators;
+
+TEST(SymplecticEuler, EnergyStaysBoundedOnUndampedOscillator) {
+  // w dt = 0.5: the energy oscillates between about (1 - w dt/2) and 1/(1 - w dt/2) of its
+  // start (the modified energy is conserved) but never drifts.
+  AnchoredOscillators sim(1, 1.0, 4.0);
+  const double e0 = sim.energies().total();
+  double lo = e0, hi = e0;
+  for (int n = 0; n < 100000; ++n) {
+    sim.operate(0.25);
+    lo = std::min(lo, sim.energies().total());
+    hi = std::max(hi, sim.energies().total());
+  }
+  const double y = 0.5;
+  EXPECT_LT(hi / e0, 1.001 / (1.0 - y / 2)) << "symplectic Euler's energy rose beyond its bounded oscillation";
+  EXPECT_GT(lo / e0, 0.999 * (1.0 - y / 2)) << "symplectic Euler's energy fell beyond its bounded oscillation";
+}
+
+TEST(SymplecticEuler, StableJustBelowWdt2) {
+  AnchoredOscillators sim(1, 1.0, 1.0);  // w = 1 rad/s
+  for (int n = 0; n < 20000; ++n) sim.operate(1.99);
+  EXPECT_LT(sim.state.pos[0].norm(), 20.0) << "symplectic Euler must stay bounded at w dt = 1.99";
+}
+
+TEST(SymplecticEuler, BlowsUpJustAboveWdt2AndSaysWhy) {
+  AnchoredOscillators sim(1, 1.0, 1.0);
+  try {
+    for (int n = 0; n < 20000; ++n) sim.operate(2.01);
+    FAIL() << "symplectic Euler at w dt = 2.01 must blow up and be reported";
+  } catch (const BlowUp& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("symplectic_euler"), std::string::npos) << what;
+    EXPECT_NE(what.find("dt must stay below"), std::string::npos) << what;
+    EXPECT_NE(what.find("= 2 s"), std::string::npos) << "the safe dt 2 / w_max = 2 s must be named: " << what;
+  }
+}
+
+TEST(SymplecticEuler, ConvergesAtFirstOrder) {
+  auto errorAt1s = [](double dt) {
+    AnchoredOscillators sim(1, 1.0, 4.0);
+    const int steps = static_cast<int>(std::lround(1.0 / dt));
+    for (int n = 0; n < steps; ++n) sim.operate(dt);
+    return std::abs(sim.state.pos[0].x() - std::cos(2.0));
+  };
+  EXPECT_NEAR(std::log2(errorAt1s(0.001) / errorAt1s(0.0005)), 1.0, 0.15);
+}
+
+TEST(Simulation, CountsOneForceEvaluationPerSymplecticStep) {
+  AnchoredOscillators sim(3, 1.0, 1.0);
+  for (int n = 0; n < 10; ++n) sim.operate(0.01);
+  EXPECT_EQ(sim.stats.steps, 10);
+  EXPECT_EQ(sim.stats.forceEvaluations, 10);
+}
+
+TEST(Simulation, PinnedMassNeverMoves) {
+  AnchoredOscillators sim(2, 1.0, 1.0);
+  sim.gravitation = Vec3(0, -9.81, 0);
+  sim.togglePinned(1);
+  const Vec3 start = sim.state.pos[1];
+  for (int n = 0; n < 1000; ++n) sim.operate(0.01);
+  EXPECT_EQ(sim.state.pos[1], start) << "a pinned mass moved";
+  EXPECT_NE(sim.state.pos[0], start) << "the free mass should have moved";
+}
+
+TEST(Simulation, ResetRestoresTheInitialState) {
+  AnchoredOscillators sim(2, 1.0, 1.0);
+  const State start = sim.state;
+  for (int n = 0; n < 100; ++n) sim.operate(0.01);
+  sim.reset();
+  EXPECT_EQ(sim.state.pos, start.pos);
+  EXPECT_EQ(sim.state.vel, start.vel);
+  EXPECT_EQ(sim.state.time, 0.0);
+  EXPECT_EQ(sim.stats.steps, 0);
+}
+
+TEST(Simulation, GrabbedMassFollowsTheTarget) {
+  AnchoredOscillators sim(1, 1.0, 1.0);
+  sim.grab(0, Vec3(0.5, 0.5, 0));
+  sim.operate(0.01);
+  EXPECT_EQ(sim.state.pos[0], Vec3(0.5, 0.5, 0));
+  sim.release();
+  sim.operate(0.01);
+  EXPECT_NE(sim.state.pos[0], Vec3(0.5, 0.5, 0)) << "a released mass must move again";
+}
+
+TEST(Simulation, PlanarSystemStaysExactlyPlanar) {
+  AnchoredOscillators sim(4, 1.0, 3.0, 0.1, 2);
+  sim.gravitation = Vec3(0.3, -9.81, 0);
+  for (int n = 0; n < 1000; ++n) sim.operate(0.01);
+  for (const Vec3& x : sim.state.pos) EXPECT_EQ(x.z(), 0.0);
+}
+
+TEST(Simulation, RejectsDimensionOtherThan2Or3) {
+  EXPECT_THROW(AnchoredOscillators(1, 1.0, 1.0, 0.0, 4), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace springlab
