@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""Command-line behaviour users rely on: bad scene files and options get a clear error that
+names the file and the key, and a non-zero exit; a good run writes its output; a run that
+blows up says so and exits 4; a missing exercise exits 3 and names it.
+
+    check_cli.py APP_STUDENT APP_REFERENCE SCENES_DIR
+"""
+import json
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+student, reference, scenes = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
+failures = []
+
+
+def run(app, *args):
+    return subprocess.run([app, *args], capture_output=True, text=True, timeout=120)
+
+
+def expect(name, proc, code, *needles):
+    text = proc.stdout + proc.stderr
+    if proc.returncode != code:
+        failures.append(f"{name}: exit code {proc.returncode}, expected {code}\n{text}")
+    for n in needles:
+        if n not in text:
+            failures.append(f"{name}: output lacks {n!r}\n{text}")
+
+
+good = json.loads((scenes / "rope.json").read_text())
+with tempfile.TemporaryDirectory() as tmp:
+    tmp = pathlib.Path(tmp)
+
+    def scene_with(name, mutate=None, text=None):
+        path = tmp / f"{name}.json"
+        data = json.loads(json.dumps(good))
+        if mutate:
+            mutate(data)
+        path.write_text(text if text is not None else json.dumps(data))
+        return str(path)
+
+    out = str(tmp / "out.json")
+    bad = {
+        "malformed": (scene_with("malformed", text='{"lab": "rope",'), "malformed JSON"),
+        "nan": (scene_with("nan", text=json.dumps(good).replace('"mass": 0.05', '"mass": NaN')), "malformed JSON"),
+        "missing": (scene_with("missing", lambda d: d["rope"].pop("spring_constant")), "rope.spring_constant: missing key"),
+        "unknown": (scene_with("unknown", lambda d: d["rope"].update(colour="red")), "rope.colour: unknown key"),
+        "type": (scene_with("type", lambda d: d["rope"].update(masses="many")), "rope.masses: must be an integer"),
+        "zero_mass": (scene_with("zero_mass", lambda d: d["rope"].update(mass=0)), "rope.mass: must be > 0"),
+        "stiffness": (scene_with("stiffness", lambda d: d["rope"].update(spring_constant=-1)), "rope.spring_constant: must be > 0"),
+        "integrator": (scene_with("integrator", lambda d: d.update(integrator="magic")), "integrator: unknown integrator"),
+        "top_level": (scene_with("top_level", lambda d: d.update(speed=3)), "speed: unknown key"),
+    }
+    for name, (path, needle) in bad.items():
+        expect(f"bad scene {name}", run(reference, "sim", path, "--steps", "10", "--out", out), 2, path, needle)
+
+    expect("unknown integrator option", run(reference, "sim", str(scenes / "rope.json"), "--steps", "10", "--out", out,
+                                            "--integrator", "magic"), 2, "unknown integrator")
+    expect("bad output extension", run(reference, "sim", str(scenes / "rope.json"), "--steps", "10", "--out",
+                                       str(tmp / "out.txt")), 2, ".json or .csv")
+
+    # A good run writes frames; a blow-up says why and exits 4; the skeleton names its exercise.
+    expect("good run", run(reference, "sim", str(scenes / "rope.json"), "--steps", "100", "--out", out), 0, "steps/s")
+    frames = json.loads(pathlib.Path(out).read_text())["frames"]
+    if len(frames) != 101:
+        failures.append(f"good run: {len(frames)} frames written, expected 101")
+    expect("blow-up", run(reference, "sim", str(scenes / "rope.json"), "--steps", "1000", "--dt", "0.01", "--out", out),
+           4, "blew up", "dt must stay below")
+    expect("skeleton", run(student, "sim", str(scenes / "rope.json"), "--steps", "10", "--out", out), 3,
+           "not implemented: exercise 1.7")
+
+for f in failures:
+    print("FAIL", f, file=sys.stderr)
+print(f"{len(failures)} failure(s)" if failures else "command line behaves")
+sys.exit(1 if failures else 0)
