@@ -87,9 +87,7 @@ void drawControls(Simulation* sim, const std::vector<std::string>& integratorNam
     if (stableDt == 0.0) {
       ImGui::TextColored(kYellow, "%s has no stable dt without damping", integrator.c_str());
     } else {
-      ImGui::PushTextWrapPos(0.0f);
-      ImGui::TextColored(kYellow, "dt exceeds the predicted stable limit %.3g s of %s", stableDt, integrator.c_str());
-      ImGui::PopTextWrapPos();
+      ImGui::TextColored(kYellow, "dt exceeds the predicted stable limit\n%.3g s of %s", stableDt, integrator.c_str());
     }
   }
 
@@ -161,7 +159,7 @@ void drawRunError(const std::string& headline, const std::string& message) {
   if (ImGui::Begin("##runerror", nullptr, kOverlay & ~ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::SetWindowFontScale(1.3f);
     ImGui::PushStyleColor(ImGuiCol_Text, kRed);
-    ImGui::TextWrapped("%s (paused): %s", headline.c_str(), message.c_str());
+    ImGui::TextWrapped("%s: %s", headline.c_str(), message.c_str());
     ImGui::PopStyleColor();
     ImGui::TextWrapped("Press R to reset; a smaller dt or another integrator may help.");
   }

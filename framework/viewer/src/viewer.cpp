@@ -171,6 +171,8 @@ class Viewer {
   double cursorX_ = 0.0, cursorY_ = 0.0;
   std::optional<int> grabbed_;
   glm::vec3 grabPlanePoint_{0.0f};
+  Vec3 grabFrom_ = Vec3::Zero();    // where the grabbed mass was held at the last frame
+  Vec3 grabTarget_ = Vec3::Zero();  // where the cursor holds it now
   Vec3 controlVelocity_ = Vec3::Zero();
 
   float fps_ = 0.0f;
@@ -188,12 +190,12 @@ void Viewer::guarded(F&& f) {
     missing_ = missingFrom(e);
   } catch (const BlowUp& e) {
     control_.paused = true;
-    runErrorHeadline_ = "The simulation blew up";
+    runErrorHeadline_ = "Paused";
     runError_ = e.what();
     std::cerr << "springlab view: " << e.what() << "\n";
   } catch (const std::exception& e) {
     control_.paused = true;
-    runErrorHeadline_ = "The simulation failed";
+    runErrorHeadline_ = "Paused, the simulation failed";
     runError_ = e.what();
     std::cerr << "springlab view: " << e.what() << "\n";
   }
@@ -364,12 +366,15 @@ void Viewer::onMouseButton(int button, int action, int mods) {
 
   if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_ALT)) {
     // Alt + click: pin or unpin the mass under the cursor.
-    if (const auto i = pickUnderCursor()) guarded([&] { scene_.sim->togglePinned(*i); });
+    if (const auto i = pickUnderCursor()) {
+      guarded([&] { scene_.sim->togglePinned(*i); });
+    }
   } else if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_SHIFT)) {
     // Shift + drag: hold the mass under the cursor in the plane facing the screen through it.
     if (const auto i = pickUnderCursor()) {
       grabbed_ = i;
       grabPlanePoint_ = toGlm(scene_.sim->state.pos[*i]);
+      grabFrom_ = grabTarget_ = scene_.sim->state.pos[*i];
       drag_ = Drag::Grab;
     }
   } else if (button == GLFW_MOUSE_BUTTON_LEFT) {
@@ -458,10 +463,10 @@ void Viewer::interact() {
     guarded([&] { sim->setControlVelocity(v); });
   }
 
-  // A grabbed mass follows the cursor in its plane.
+  // A grabbed mass follows the cursor in its plane (advance() moves it there).
   if (drag_ == Drag::Grab && grabbed_) {
     const glm::vec3 t = viewer::intersectPlane(cursorRay(), grabPlanePoint_, camera_.forward());
-    guarded([&] { sim->grab(*grabbed_, Vec3(t.x, t.y, t.z)); });
+    grabTarget_ = Vec3(t.x, t.y, t.z);
   }
 }
 
@@ -471,7 +476,18 @@ void Viewer::advance() {
   control_.stepRequested = false;
   if (!sim || missing_ || !runError_.empty() || !step) return;
   guarded([&] {
-    for (int k = 0; k < control_.substeps; ++k) sim->operate(control_.dt);
+    // A grabbed mass moves to the cursor in even parts over the frame's substeps: in one
+    // substep it would get the whole frame's motion as a velocity of distance / dt, a kick
+    // of a hundred m/s that the stiff springs pass on to the rope.
+    const bool grabbing = drag_ == Drag::Grab && grabbed_;
+    for (int k = 0; k < control_.substeps; ++k) {
+      if (grabbing) {
+        const double s = static_cast<double>(k + 1) / static_cast<double>(control_.substeps);
+        sim->grab(*grabbed_, grabFrom_ + s * (grabTarget_ - grabFrom_));
+      }
+      sim->operate(control_.dt);
+    }
+    if (grabbing) grabFrom_ = grabTarget_;
   });
 }
 
