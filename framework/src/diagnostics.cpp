@@ -48,6 +48,12 @@ void BlowUpCheck::arm(const Simulation& sim) {
                  totalMass * (sim.gravitation.norm() * extent + 1.0);
 }
 
+void BlowUpCheck::admitUserEnergy(const Simulation& sim) {
+  const double before = energyScale_;
+  arm(sim);
+  energyScale_ = std::max(before, energyScale_);
+}
+
 void BlowUpCheck::check(const Simulation& sim, double dt) const {
   // Non-finite state: name the first mass that went bad.
   std::string why;

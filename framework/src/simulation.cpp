@@ -104,15 +104,20 @@ void Simulation::grab(int index, const Vec3& target) {
   if (index < 0 || index >= numOfMasses()) throw std::out_of_range("Simulation::grab: no such mass");
   grabbed_ = index;
   grabTarget_ = target;
+  blowUpCheck_.admitUserEnergy(*this);
 }
 
-void Simulation::release() { grabbed_.reset(); }
+void Simulation::release() {
+  grabbed_.reset();
+  blowUpCheck_.admitUserEnergy(*this);
+}
 
 void Simulation::togglePinned(int index) {
   if (index < 0 || index >= numOfMasses()) throw std::out_of_range("Simulation::togglePinned: no such mass");
   masses[index].pinned = !masses[index].pinned;
   state.vel[index].setZero();
   integrator_->reset();
+  blowUpCheck_.admitUserEnergy(*this);
 }
 
 }  // namespace springlab

@@ -54,6 +54,18 @@ TEST(BlowUpCheck, QuietOnADampedStableRun) {
   EXPECT_NO_THROW(for (int n = 0; n < 10000; ++n) sim.operate(0.01));
 }
 
+TEST(BlowUpCheck, EnergyTheUserPutsInIsNotABlowUp) {
+  // Dragging a mass 10 m away stores 10^6 J in a stiff spring: the user did it, not dt.
+  AnchoredOscillators sim(2, 1.0, 1.0);
+  sim.springs.push_back(Spring{0, 1, 20000.0, 1.0, 0.0});
+  sim.togglePinned(0);
+  EXPECT_NO_THROW({
+    sim.grab(1, Vec3(11.0, 0, 0));
+    sim.operate(1e-4);
+  });
+  EXPECT_GT(sim.energies().elastic, 100 * 1.5);
+}
+
 TEST(BlowUpCheck, CanBeTurnedOffToWatchAMethodFail) {
   AnchoredOscillators sim(1, 1.0, 1.0);
   sim.setBlowUpCheck(false);

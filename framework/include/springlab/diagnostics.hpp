@@ -42,6 +42,8 @@ class BlowUpCheck {
   static constexpr double kRunawayFactor = 100.0;
 
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
+  // The user put energy in (dragged, pinned): never count that as a blow-up.
+  void admitUserEnergy(const Simulation& sim);
   void check(const Simulation& sim, double dt) const;  // throws BlowUp
 
   double energyScale() const { return energyScale_; }
