@@ -28,9 +28,11 @@ void Simulation::simulate(double dt) {
 
   // A mass the user drags is held at the mouse, at rest: the mouse may jump by a whole
   // frame in one substep, and that jump must not turn into a velocity.
+  // The energy the drag stores in the springs is the user's doing, not a blow-up.
   if (grabbed_) {
     state.pos[*grabbed_] = grabTarget_;
     state.vel[*grabbed_].setZero();
+    blowUpCheck_.admitUserEnergy(*this);
   }
 
   if (blowUpCheckEnabled_) blowUpCheck_.check(*this, dt);
@@ -104,7 +106,6 @@ void Simulation::grab(int index, const Vec3& target) {
   if (index < 0 || index >= numOfMasses()) throw std::out_of_range("Simulation::grab: no such mass");
   grabbed_ = index;
   grabTarget_ = target;
-  blowUpCheck_.admitUserEnergy(*this);
 }
 
 void Simulation::release() {
