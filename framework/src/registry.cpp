@@ -47,7 +47,12 @@ LoadedScene Registry::loadScene(const std::string& path) const {
   return loadScene(reader);
 }
 
-LoadedScene Registry::loadScene(SceneReader& reader) const {
+SceneSettings Registry::readSceneSettings(const std::string& path) const {
+  SceneReader reader = SceneReader::fromFile(path);
+  return readSettings(reader);
+}
+
+SceneSettings Registry::readSettings(SceneReader& reader) const {
   // Settings shared by every lab.
   SceneSettings s;
   s.file = reader.file();
@@ -64,6 +69,11 @@ LoadedScene Registry::loadScene(SceneReader& reader) const {
   }
   s.gravity = reader.vec3("gravity");
   if (s.dimension == 2 && s.gravity.z() != 0.0) reader.fail("gravity", "must have z = 0 in a 2D scene");
+  return s;
+}
+
+LoadedScene Registry::loadScene(SceneReader& reader) const {
+  const SceneSettings s = readSettings(reader);
 
   // The lab's own section, named after the lab.
   auto factory = scenes_.find(s.lab);

@@ -51,8 +51,13 @@ class Registry {
   // Throws SceneError naming the file and key on any bad input.
   LoadedScene loadScene(const std::string& path) const;
   LoadedScene loadScene(SceneReader& reader) const;
+  // Only the settings every scene has, without building the simulation (the viewer shows
+  // them even when the lab's code cannot build the scene yet).
+  SceneSettings readSceneSettings(const std::string& path) const;
 
  private:
+  SceneSettings readSettings(SceneReader& reader) const;
+
   std::map<std::string, IntegratorFactory> integrators_;
   std::map<std::string, SceneFactory> scenes_;
 };

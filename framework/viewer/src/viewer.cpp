@@ -51,24 +51,6 @@ struct Scene {
   std::optional<MissingExercise> missingAtLoad;
 };
 
-// Settings of a scene whose simulation could not be built, read again without building it
-// (loadScene drops them when the lab's factory throws).
-SceneSettings readSettingsOnly(const std::string& path) {
-  SceneSettings s;
-  s.file = path;
-  s.name = std::filesystem::path(path).stem().string();
-  try {
-    SceneReader reader = SceneReader::fromFile(path);
-    s.name = reader.string("name");
-    s.dt = reader.positive("dt");
-    s.substeps = reader.integer("substeps", 1);
-    s.integrator = reader.string("integrator");
-  } catch (const SceneError&) {
-    // Keep the defaults: the message about the missing exercise matters more.
-  }
-  return s;
-}
-
 // The region the camera frames at the start and the ground drawn under it.
 struct Framing {
   glm::vec3 lo{-2.0f, -1.5f, -2.0f};
@@ -572,7 +554,7 @@ int runViewer(const Registry& registry, const std::string& scenePath, const View
     return 2;
   } catch (const NotImplemented& e) {
     std::cerr << "springlab view: " << e.what() << "\n";
-    scene.settings = readSettingsOnly(scenePath);
+    scene.settings = registry.readSceneSettings(scenePath);
     scene.missingAtLoad = missingFrom(e);
   }
   if (!options.integrator.empty()) {
