@@ -12,6 +12,7 @@ printed fake output score nothing.
     tools/grade.py --manifest M --check-handout H  check the handout's exercise headings and points
 """
 import argparse
+import concurrent.futures
 import json
 import os
 import pathlib
@@ -105,7 +106,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--binary", help="grading test executable")
     ap.add_argument("--manifest", required=True, help="tests/<lab>/exercises.json")
-    ap.add_argument("--timeout", type=float, default=60.0, help="seconds per test (default 60)")
+    ap.add_argument("--timeout", type=float, default=20.0, help="seconds per test (default 20; each takes < 2 s)")
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="tests run at once (default: cores)")
     ap.add_argument("--seed", type=int, help="seed for random inputs (default: drawn and printed)")
     ap.add_argument("--expect-percent", type=float, help="exit 1 unless the score is this percentage")
     ap.add_argument("--out", help="folder for report.md and results.json")
@@ -122,6 +124,10 @@ def main():
         return 1 if problems else 0
     if not args.binary:
         ap.error("--binary is required")
+    args.binary = str(pathlib.Path(args.binary).resolve())  # tests run in their own folders
+    if not os.access(args.binary, os.X_OK):
+        print(f"{args.binary}: no such test program (was the lab built?)", file=sys.stderr)
+        return 2
 
     # Every test in the binary must carry points, and every manifest test must exist
     # (hidden tests are absent from a student release build and are left out there).
@@ -145,21 +151,22 @@ def main():
     else:
         seed = random.randrange(2**32)
     print(f"{manifest['title']}: grading {args.binary} (SPRINGLAB_SEED={seed})")
-    results, score, max_score, started = [], 0.0, 0.0, time.monotonic()
-    for ex in manifest["exercises"]:
-        for t in ex["tests"]:
-            if t["name"] not in present:
-                continue
-            passed, message, seconds = run_one(args.binary, t["name"], args.timeout, seed)
-            points = t["points"] if passed else 0
-            score += points
-            max_score += t["points"]
-            results.append(dict(exercise=ex, test=t, passed=passed, message=message, seconds=seconds, score=points))
-            if not args.quiet:
-                mark = "PASS" if passed else "FAIL"
-                print(f"  {mark} {points}/{t['points']}  {ex['id']} {t['name']}")
-                if message:
-                    print("         " + message.replace("\n", "\n         "))
+    # Run the tests side by side, each in its own process; report them in manifest order.
+    started = time.monotonic()
+    todo = [(ex, t) for ex in manifest["exercises"] for t in ex["tests"] if t["name"] in present]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        outcomes = list(pool.map(lambda et: run_one(args.binary, et[1]["name"], args.timeout, seed), todo))
+    results, score, max_score = [], 0.0, 0.0
+    for (ex, t), (passed, message, seconds) in zip(todo, outcomes):
+        points = t["points"] if passed else 0
+        score += points
+        max_score += t["points"]
+        results.append(dict(exercise=ex, test=t, passed=passed, message=message, seconds=seconds, score=points))
+        if not args.quiet:
+            mark = "PASS" if passed else "FAIL"
+            print(f"  {mark} {points}/{t['points']}  {ex['id']} {t['name']}")
+            if message:
+                print("         " + message.replace("\n", "\n         "))
 
     percent = 100.0 * score / max_score if max_score else 0.0
     print(f"{manifest['title']}: {score:g} / {max_score:g} points ({percent:.1f} %)")
