@@ -1,4 +1,5 @@
 #include "picking.hpp"
+#include "to_glm.hpp"
 
 #include <cmath>
 #include <limits>
@@ -12,8 +13,7 @@ std::optional<int> pickMass(const std::vector<Vec3>& positions, const Ray& ray, 
   std::optional<int> best;
   float bestPixels = std::numeric_limits<float>::max();
   for (std::size_t i = 0; i < positions.size(); ++i) {
-    const glm::vec3 p(static_cast<float>(positions[i].x()), static_cast<float>(positions[i].y()),
-                      static_cast<float>(positions[i].z()));
+    const glm::vec3 p = toGlm(positions[i]);
     const glm::vec3 r = p - ray.origin;
     const float along = glm::dot(r, ray.direction);
     if (along <= 0.0f) continue;  // behind the eye

@@ -1,4 +1,5 @@
 #include "renderer.hpp"
+#include "to_glm.hpp"
 
 #include <GL/glew.h>
 
@@ -68,10 +69,6 @@ GLuint compile(GLenum type, const char* source, std::string& error) {
     return 0;
   }
   return shader;
-}
-
-glm::vec3 toGlm(const Vec3& v) {
-  return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
 }
 
 }  // namespace

@@ -25,11 +25,14 @@
 #include "picking.hpp"
 #include "renderer.hpp"
 #include "snapshot.hpp"
+#include "to_glm.hpp"
 #include "springlab/rope_simulation.hpp"
 
 namespace springlab {
 
 namespace {
+
+using viewer::toGlm;
 
 using viewer::Camera;
 using viewer::MissingExercise;
@@ -39,10 +42,6 @@ constexpr double kControlSpeed = 3.0;  // m/s, the fixed end while an arrow key 
 constexpr float kPickPixels = 25.0f;   // how far from a mass a click may land
 
 MissingExercise missingFrom(const NotImplemented& e) { return {e.exerciseId(), e.title(), e.handoutSection()}; }
-
-glm::vec3 toGlm(const Vec3& v) {
-  return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
-}
 
 // The scene: what loadScene gave, or only the settings when building it threw NotImplemented.
 struct Scene {
