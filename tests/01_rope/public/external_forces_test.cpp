@@ -26,13 +26,11 @@ TEST_F(GravityAndAirFriction, AirFrictionOpposesVelocity) {
       << "without gravity the force must be the air friction -c v, opposite to the velocity " << seedText();
 }
 
-Ground someGround(springlab::testing::Seeded& t) {
-  (void)t;
-  return Ground{-1.5, 100.0, 0.2, 2.0};
-}
+// The classic rope demo's ground.
+Ground someGround() { return Ground{-1.5, 100.0, 0.2, 2.0}; }
 
 TEST_F(GroundContact, NoForceAboveTheGround) {
-  const Ground g = someGround(*this);
+  const Ground g = someGround();
   for (int trial = 0; trial < 100; ++trial) {
     const Vec3 x(uniform(-3, 3), g.height + uniform(1e-6, 3), uniform(-3, 3));
     ASSERT_EQ(groundContactForce(x, vec3(-3, 3), g), Vec3::Zero())
@@ -41,7 +39,7 @@ TEST_F(GroundContact, NoForceAboveTheGround) {
 }
 
 TEST_F(GroundContact, RepulsionGrowsWithDepth) {
-  const Ground g = someGround(*this);
+  const Ground g = someGround();
   const double depth = uniform(0.01, 0.5);
   const Vec3 x(uniform(-3, 3), g.height - depth, uniform(-3, 3));
   const Vec3 f = groundContactForce(x, Vec3::Zero(), g);
@@ -52,7 +50,7 @@ TEST_F(GroundContact, RepulsionGrowsWithDepth) {
 }
 
 TEST_F(GroundContact, FrictionOpposesHorizontalVelocity) {
-  const Ground g = someGround(*this);
+  const Ground g = someGround();
   const Vec3 x(0, g.height - 0.1, 0);
   const Vec3 v(uniform(-3, 3), 0.0, uniform(-3, 3));
   const Vec3 f = groundContactForce(x, v, g);
@@ -61,7 +59,7 @@ TEST_F(GroundContact, FrictionOpposesHorizontalVelocity) {
 }
 
 TEST_F(GroundContact, AbsorptionSlowsOnlyDownwardMotion) {
-  const Ground g = someGround(*this);
+  const Ground g = someGround();
   const double depth = 0.1;
   const Vec3 x(0, g.height - depth, 0);
   const double speed = uniform(0.1, 3);

@@ -165,14 +165,12 @@ TEST_F(RopeDynamics, SymplecticEulerKeepsEnergyBoundedAndExplicitEulerGainsIt) {
       rope.operate(0.02);
       worst = std::max(worst, rope.energies().total() / e0);
     }
-    return std::pair{rope.energies().total() / e0, worst};
+    return std::pair{rope.energies().total() / e0, worst};  // final and largest E / E0
   };
-  const auto [symplecticFinal, symplecticWorst] = energyAfter("symplectic_euler");
-  EXPECT_LT(symplecticWorst, 1.15) << "symplectic Euler's energy must stay bounded on an undamped spring";
-  const auto [explicitFinal, explicitWorst] = energyAfter("explicit_euler");
-  EXPECT_GT(explicitFinal, 1.0e6) << "explicit Euler must gain energy on an undamped spring (factor 1.04 per step)";
-  (void)symplecticFinal;
-  (void)explicitWorst;
+  EXPECT_LT(energyAfter("symplectic_euler").second, 1.15)
+      << "symplectic Euler's energy must stay bounded on an undamped spring";
+  EXPECT_GT(energyAfter("explicit_euler").first, 1.0e6)
+      << "explicit Euler must gain energy on an undamped spring (factor 1.04 per step)";
 }
 
 TEST_F(RopeDynamics, PlanarRopeStaysExactlyInItsPlane) {
