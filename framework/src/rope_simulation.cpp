@@ -101,4 +101,16 @@ double RopeSimulation::otherPotentialEnergy(const State& s) const {
   return e;
 }
 
+Bounds RopeSimulation::reach() const {
+  double length = 0.0;
+  for (const Spring& s : springs) length += s.springLength;
+  const double L = std::max(length, 0.5);
+  const Vec3& c = ropeConnectionPos;
+  Bounds b;
+  b.lo = Vec3(c.x() - L, std::max(ground.height, c.y() - L), c.z() - 0.25 * L);
+  b.hi = Vec3(c.x() + L, c.y() + 0.15 * L, c.z() + 0.25 * L);
+  if (dimension == 2) b.lo.z() = b.hi.z() = c.z();
+  return b;
+}
+
 }  // namespace springlab

@@ -102,6 +102,17 @@ Vec3 Simulation::momentum() const {
 
 double Simulation::maxAngularFrequency() const { return springMaxAngularFrequency(*this); }
 
+Bounds Simulation::reach() const {
+  Bounds b;
+  if (state.pos.empty()) return b;
+  b.lo = b.hi = state.pos.front();
+  for (const Vec3& p : state.pos) {
+    b.lo = b.lo.cwiseMin(p);
+    b.hi = b.hi.cwiseMax(p);
+  }
+  return b;
+}
+
 void Simulation::grab(int index, const Vec3& target) {
   if (index < 0 || index >= numOfMasses()) throw std::out_of_range("Simulation::grab: no such mass");
   grabbed_ = index;

@@ -54,6 +54,10 @@ class RopeSimulation : public Simulation {
   std::vector<Parameter> parameters() override;
   void parametersChanged() override;
   double maxAngularFrequency() const override;
+  std::optional<double> groundHeight() const override { return ground.height; }
+  // Everywhere the rope can reach: a box of its length around the connection point, cut at
+  // the ground below and a little above the connection point.
+  Bounds reach() const override;
 
  protected:
   // Energy stored in the ground's repulsion, 1/2 k depth^2 per mass below the ground.

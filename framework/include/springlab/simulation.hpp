@@ -14,6 +14,7 @@
 #include "springlab/not_implemented.hpp"
 #include "springlab/math.hpp"
 #include "springlab/parameter.hpp"
+#include "springlab/shape.hpp"
 #include "springlab/spring.hpp"
 #include "springlab/state.hpp"
 
@@ -90,6 +91,19 @@ class Simulation {
   virtual void parametersChanged() {}
   // Short name of the lab's system for the HUD ("rope").
   virtual std::string kind() const = 0;
+
+  // ---- what the viewer shows besides masses, springs and triangles -------------------
+  // Colliders and markers to draw, in the scene's current state.
+  virtual std::vector<Shape> shapes() const { return {}; }
+  // The user drags shapes()[index] (a movable one) to `center`; called once per substep
+  // with the drag spread evenly over a frame, so the lab may derive the shape's velocity.
+  virtual void moveShape(int index, const Vec3& center) { (void)index; (void)center; }
+  // Height of a horizontal ground y = h, when the scene has one (the viewer draws it there).
+  virtual std::optional<double> groundHeight() const { return std::nullopt; }
+  // The region the camera frames at the start: by default the masses' bounding box.
+  virtual Bounds reach() const;
+  // Named quantities of the current state (volume, pressure, sag) for the HUD and studies.
+  virtual std::vector<Observable> observables() const { return {}; }
 
  protected:
   // Add every force acting at state s into f (f arrives zeroed, size n).

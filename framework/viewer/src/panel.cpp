@@ -35,6 +35,12 @@ void drawHud(const HudInfo& hud) {
       if (hud.energies->other != 0.0) ImGui::Text("other         %10.4f J", hud.energies->other);
       ImGui::Text("total         %10.4f J", hud.energies->total());
     }
+    if (!hud.observables.empty()) {
+      ImGui::Separator();
+      for (const Observable& o : hud.observables) {
+        ImGui::Text("%-13s %10.4g %s", o.name.c_str(), o.value, o.unit.c_str());
+      }
+    }
     ImGui::Separator();
     ImGui::Text("%.0f frames/s", static_cast<double>(hud.fps));
   }
@@ -112,14 +118,17 @@ void drawControls(Simulation* sim, const std::vector<std::string>& integratorNam
   ImGui::Separator();
   ImGui::Checkbox(sim && !sim->triangles.empty() ? "wireframe (W)" : "masses (W)",
                   sim && !sim->triangles.empty() ? &control.wireframe : &control.drawMasses);
+  ImGui::SameLine();
+  ImGui::Checkbox("spring kinds (K)", &control.springsByKind);
   if (ImGui::CollapsingHeader("mouse and keys")) {
     ImGui::TextUnformatted(
         "left drag: orbit   right drag, wheel: zoom\n"
         "middle drag: pan\n"
         "shift + left: drag a mass   alt + left: pin\n"
+        "ctrl + left: drag a collider\n"
         "arrows: move the fixed end in x, z\n"
         "page up/down: move it in y\n"
-        "P pause  N step  R reset  W wireframe\n"
+        "P pause  N step  R reset  W wireframe  K kinds\n"
         "S, F12 screenshot  Esc quit");
   }
   ImGui::PopItemWidth();

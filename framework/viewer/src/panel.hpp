@@ -19,6 +19,7 @@ struct RunControl {
   int substeps = 1;   // steps per frame
   bool drawMasses = true;
   bool wireframe = false;
+  bool springsByKind = false;  // K: structural, shear, bend in their own colours
   // Requests, consumed by the loop in the same frame.
   bool stepRequested = false;
   bool resetRequested = false;
@@ -45,6 +46,7 @@ struct HudInfo {
   int substeps = 0;
   std::string integrator;
   std::optional<Energies> energies;  // nullopt when they could not be computed
+  std::vector<Observable> observables;  // the scene's volume, pressure, ...
   float fps = 0.0f;
   bool paused = false;
 };

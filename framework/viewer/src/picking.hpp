@@ -7,6 +7,7 @@
 
 #include "camera.hpp"
 #include "springlab/math.hpp"
+#include "springlab/shape.hpp"
 
 namespace springlab::viewer {
 
@@ -14,6 +15,10 @@ namespace springlab::viewer {
 // pixelAngle is the angle one pixel spans (Camera::pixelAngle). nullopt when none is close.
 std::optional<int> pickMass(const std::vector<Vec3>& positions, const Ray& ray, float pixelAngle,
                             float maxPixels);
+
+// The movable shape the ray hits first (spheres by their surface, boxes by their bounding
+// sphere), or nullopt.
+std::optional<int> pickShape(const std::vector<Shape>& shapes, const Ray& ray);
 
 // Where the ray meets the plane through `point` whose normal is `normal` (the camera's
 // forward direction); `point` itself when the ray runs parallel to the plane.

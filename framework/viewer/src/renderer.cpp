@@ -12,6 +12,23 @@ namespace springlab::viewer {
 
 namespace {
 
+// Structural, shear, bend and extra springs: four colours told apart at a glance.
+glm::vec3 springKindColor(int kind) {
+  switch (kind) {
+    case kStructural: return {0.35f, 0.65f, 1.0f};
+    case kShear: return {0.35f, 0.9f, 0.45f};
+    case kBend: return {1.0f, 0.6f, 0.2f};
+    default: return {0.85f, 0.4f, 0.95f};
+  }
+}
+
+// Two unit vectors completing n (unit) to an orthonormal frame.
+std::pair<glm::vec3, glm::vec3> tangents(const glm::vec3& n) {
+  const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::vec3 t = glm::normalize(glm::cross(helper, n));
+  return {t, glm::cross(n, t)};
+}
+
 // One program for everything: flat colours for lines and the grid, a two-sided headlight
 // for triangles (cloth has no inside), and round points cut out of square point sprites.
 const char* const kVertexShader = R"(#version 330 core
@@ -247,7 +264,8 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
     lines.reserve(2 * sim.springs.size());
     for (const Spring& s : sim.springs) {
       if (!valid(s.mass1) || !valid(s.mass2)) continue;
-      const glm::vec3 c = 0.5f * (massColors[s.mass1] + massColors[s.mass2]);
+      const glm::vec3 c = options.springsByKind ? springKindColor(s.kind)
+                                                : 0.5f * (massColors[s.mass1] + massColors[s.mass2]);
       lines.push_back({toGlm(pos[s.mass1]), c, {}});
       lines.push_back({toGlm(pos[s.mass2]), c, {}});
     }
@@ -273,6 +291,81 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
     draw(GL_POINTS, pinned, Shading::RoundPoint, 12.0f * pixelScale, viewProj, eye);
     draw(GL_POINTS, held, Shading::RoundPoint, 14.0f * pixelScale, viewProj, eye);
   }
+}
+
+void Renderer::drawShapes(const std::vector<Shape>& shapes, std::optional<int> held, float planeHalfSize,
+                          const glm::mat4& viewProj, const glm::vec3& eye, float pixelScale) {
+  std::vector<Vertex> tris, lines;
+  for (std::size_t k = 0; k < shapes.size(); ++k) {
+    const Shape& shape = shapes[k];
+    const glm::vec3 color = held && static_cast<std::size_t>(*held) == k ? glm::vec3(1.0f, 0.9f, 0.2f)
+                            : shape.movable                               ? glm::vec3(0.95f, 0.55f, 0.2f)
+                                                                          : glm::vec3(0.6f, 0.6f, 0.62f);
+    const glm::vec3 c = toGlm(shape.center);
+    switch (shape.type) {
+      case ShapeType::Sphere: {
+        // A UV sphere, slightly smaller than the collider so that cloth resting on it shows.
+        const int rings = 24, segments = 48;
+        const float r = 0.985f * static_cast<float>(shape.radius);
+        auto point = [&](int i, int j) {
+          const float theta = 3.14159265f * static_cast<float>(i) / static_cast<float>(rings);
+          const float phi = 6.28318531f * static_cast<float>(j) / static_cast<float>(segments);
+          return glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+        };
+        for (int i = 0; i < rings; ++i) {
+          for (int j = 0; j < segments; ++j) {
+            const glm::vec3 n00 = point(i, j), n10 = point(i + 1, j), n11 = point(i + 1, j + 1), n01 = point(i, j + 1);
+            for (const glm::vec3& n : {n00, n10, n11, n00, n11, n01}) tris.push_back({c + r * n, color, n});
+          }
+        }
+        break;
+      }
+      case ShapeType::Plane: {
+        const glm::vec3 n = glm::normalize(toGlm(shape.axis));
+        const auto [t, b] = tangents(n);
+        const float h = planeHalfSize;
+        const glm::vec3 p00 = c - h * t - h * b, p10 = c + h * t - h * b, p11 = c + h * t + h * b,
+                        p01 = c - h * t + h * b;
+        for (const glm::vec3& p : {p00, p10, p11, p00, p11, p01}) tris.push_back({p, 0.8f * color, n});
+        break;
+      }
+      case ShapeType::Box: {
+        const glm::vec3 e = toGlm(shape.axis);
+        // Each face: its normal and two in-plane axes, scaled by the half extents.
+        for (int axis = 0; axis < 3; ++axis) {
+          for (float side : {-1.0f, 1.0f}) {
+            glm::vec3 n(0.0f), u(0.0f), v(0.0f);
+            n[axis] = side;
+            u[(axis + 1) % 3] = e[(axis + 1) % 3];
+            v[(axis + 2) % 3] = e[(axis + 2) % 3];
+            const glm::vec3 f = c + n * e[axis];
+            for (const glm::vec3& p : {f - u - v, f + u - v, f + u + v, f - u - v, f + u + v, f - u + v}) {
+              tris.push_back({p, color, n});
+            }
+          }
+        }
+        break;
+      }
+      case ShapeType::Arrow: {
+        const glm::vec3 a = toGlm(shape.axis);
+        const float len = glm::length(a);
+        if (len <= 0.0f) break;
+        const glm::vec3 tip = c + a, d = a / len;
+        const auto [t, b] = tangents(d);
+        lines.push_back({c, color, {}});
+        lines.push_back({tip, color, {}});
+        for (const glm::vec3& side : {t, -t, b, -b}) {
+          lines.push_back({tip, color, {}});
+          lines.push_back({tip - 0.2f * len * d + 0.08f * len * side, color, {}});
+        }
+        break;
+      }
+    }
+  }
+  draw(GL_TRIANGLES, tris, Shading::Lit, 1.0f, viewProj, eye);
+  glLineWidth(std::min(3.0f * pixelScale, maxLineWidth_));
+  draw(GL_LINES, lines, Shading::Flat, 1.0f, viewProj, eye);
+  glLineWidth(1.0f);
 }
 
 }  // namespace springlab::viewer

@@ -17,6 +17,7 @@ struct DrawOptions {
   bool springs = true;
   bool surfaces = true;        // shaded triangles, when the scene has any
   bool surfaceWireframe = false;
+  bool springsByKind = false;  // springs in the colour of their kind, not of their forces
 };
 
 class Renderer {
@@ -44,6 +45,12 @@ class Renderer {
   // (1 for an 800 pixel high window).
   void drawSimulation(const Simulation& sim, const std::vector<glm::vec3>& massColors, std::optional<int> grabbed,
                       const DrawOptions& options, const glm::mat4& viewProj, const glm::vec3& eye, float pixelScale);
+
+  // Colliders and markers: spheres and boxes shaded, planes as a square of `planeHalfSize`
+  // around their point, arrows as lines. Movable shapes are orange, fixed ones grey; the
+  // shape the user drags (`held`) is yellow.
+  void drawShapes(const std::vector<Shape>& shapes, std::optional<int> held, float planeHalfSize,
+                  const glm::mat4& viewProj, const glm::vec3& eye, float pixelScale);
 
  private:
   struct Vertex {

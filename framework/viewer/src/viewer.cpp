@@ -26,7 +26,6 @@
 #include "renderer.hpp"
 #include "snapshot.hpp"
 #include "to_glm.hpp"
-#include "springlab/rope_simulation.hpp"
 
 namespace springlab {
 
@@ -60,31 +59,15 @@ struct Framing {
 Framing frameScene(const Simulation* sim) {
   Framing f;
   if (!sim || sim->state.pos.empty()) return f;
-
-  // A rope: everywhere it can reach, a box of its length around the connection point,
-  // cut at the ground below and a little above the connection point.
-  if (const auto* rope = dynamic_cast<const RopeSimulation*>(sim)) {
-    double length = 0.0;
-    for (const Spring& s : rope->springs) length += s.springLength;
-    const auto L = static_cast<float>(std::max(length, 0.5));
-    const glm::vec3 c = toGlm(rope->ropeConnectionPos);
-    f.groundHeight = static_cast<float>(rope->ground.height);
-    f.lo = glm::vec3(c.x - L, std::max(f.groundHeight, c.y - L), c.z - 0.25f * L);
-    f.hi = glm::vec3(c.x + L, c.y + 0.15f * L, c.z + 0.25f * L);
-    if (rope->dimension == 2) f.lo.z = f.hi.z = c.z;
-    return f;
-  }
-
-  // Anything else: its bounding box with a margin, the ground at its lowest point.
-  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const Vec3& p : sim->state.pos) {
-    lo = glm::min(lo, toGlm(p));
-    hi = glm::max(hi, toGlm(p));
-  }
-  const float margin = 0.1f * std::max(glm::length(hi - lo), 0.1f);
+  // The scene's reach with a margin (a rope gives all it can reach, others their bounding
+  // box); the ground where the scene has one, else under the lowest point.
+  const Bounds reach = sim->reach();
+  const glm::vec3 lo = toGlm(reach.lo), hi = toGlm(reach.hi);
+  const float margin = 0.05f * std::max(glm::length(hi - lo), 0.1f);
   f.lo = lo - glm::vec3(margin);
   f.hi = hi + glm::vec3(margin);
-  f.groundHeight = lo.y;
+  if (sim->dimension == 2) f.lo.z = f.hi.z = 0.5f * (lo.z + hi.z);
+  f.groundHeight = sim->groundHeight() ? static_cast<float>(*sim->groundHeight()) : lo.y;
   return f;
 }
 
@@ -111,7 +94,7 @@ class Viewer {
   int run();
 
  private:
-  enum class Drag { None, Orbit, Zoom, Pan, Grab };
+  enum class Drag { None, Orbit, Zoom, Pan, Grab, MoveShape };
 
   static Viewer& from(GLFWwindow* window) { return *static_cast<Viewer*>(glfwGetWindowUserPointer(window)); }
   void onKey(int key, int action, int mods);
@@ -155,6 +138,9 @@ class Viewer {
   Vec3 grabFrom_ = Vec3::Zero();    // where the grabbed mass was held at the last frame
   Vec3 grabTarget_ = Vec3::Zero();  // where the cursor holds it now
   Vec3 controlVelocity_ = Vec3::Zero();
+  std::optional<int> heldShape_;     // index into the scene's shapes() while Ctrl-dragging
+  Vec3 shapeFrom_ = Vec3::Zero();    // where the held shape was at the last frame
+  Vec3 shapeTarget_ = Vec3::Zero();  // where the cursor holds it now
 
   float fps_ = 0.0f;
   int framesSinceFps_ = 0;
@@ -329,6 +315,7 @@ void Viewer::onKey(int key, int action, int mods) {
         control_.drawMasses = !control_.drawMasses;
       }
       break;
+    case GLFW_KEY_K: control_.springsByKind = !control_.springsByKind; break;
     case GLFW_KEY_S:
     case GLFW_KEY_F12: control_.screenshotRequested = true; break;
     default: break;
@@ -340,6 +327,7 @@ void Viewer::onMouseButton(int button, int action, int mods) {
     if (drag_ == Drag::Grab && scene_.sim) scene_.sim->release();
     drag_ = Drag::None;
     grabbed_.reset();
+    heldShape_.reset();
     return;
   }
   if (ImGui::GetIO().WantCaptureMouse) return;
@@ -349,6 +337,16 @@ void Viewer::onMouseButton(int button, int action, int mods) {
     // Alt + click: pin or unpin the mass under the cursor.
     if (const auto i = pickUnderCursor()) {
       guarded([&] { scene_.sim->togglePinned(*i); });
+    }
+  } else if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_CONTROL)) {
+    // Ctrl + drag: move a movable collider in the plane facing the screen through its centre.
+    if (!scene_.sim) return;
+    const std::vector<Shape> shapes = scene_.sim->shapes();
+    if (const auto k = viewer::pickShape(shapes, cursorRay())) {
+      heldShape_ = k;
+      grabPlanePoint_ = toGlm(shapes[static_cast<std::size_t>(*k)].center);
+      shapeFrom_ = shapeTarget_ = shapes[static_cast<std::size_t>(*k)].center;
+      drag_ = Drag::MoveShape;
     }
   } else if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_SHIFT)) {
     // Shift + drag: hold the mass under the cursor in the plane facing the screen through it.
@@ -449,6 +447,10 @@ void Viewer::interact() {
     const glm::vec3 t = viewer::intersectPlane(cursorRay(), grabPlanePoint_, camera_.forward());
     grabTarget_ = Vec3(t.x, t.y, t.z);
   }
+  if (drag_ == Drag::MoveShape && heldShape_) {
+    const glm::vec3 t = viewer::intersectPlane(cursorRay(), grabPlanePoint_, camera_.forward());
+    shapeTarget_ = Vec3(t.x, t.y, t.z);
+  }
 }
 
 void Viewer::advance() {
@@ -460,15 +462,17 @@ void Viewer::advance() {
     // A grabbed mass moves to the cursor in even parts over the frame's substeps: in one
     // substep it would get the whole frame's motion as a velocity of distance / dt, a kick
     // of a hundred m/s that the stiff springs pass on to the rope.
+    // A dragged collider moves the same way, so the lab sees a steady velocity.
     const bool grabbing = drag_ == Drag::Grab && grabbed_;
+    const bool moving = drag_ == Drag::MoveShape && heldShape_;
     for (int k = 0; k < control_.substeps; ++k) {
-      if (grabbing) {
-        const double s = static_cast<double>(k + 1) / static_cast<double>(control_.substeps);
-        sim->grab(*grabbed_, grabFrom_ + s * (grabTarget_ - grabFrom_));
-      }
+      const double s = static_cast<double>(k + 1) / static_cast<double>(control_.substeps);
+      if (grabbing) sim->grab(*grabbed_, grabFrom_ + s * (grabTarget_ - grabFrom_));
+      if (moving) sim->moveShape(*heldShape_, shapeFrom_ + s * (shapeTarget_ - shapeFrom_));
       sim->operate(control_.dt);
     }
     if (grabbing) grabFrom_ = grabTarget_;
+    if (moving) shapeFrom_ = shapeTarget_;
   });
 }
 
@@ -491,12 +495,19 @@ void Viewer::draw() {
     draw.surfaceWireframe = mesh && control_.wireframe;
     draw.springs = !mesh || control_.wireframe;
     draw.masses = mesh ? control_.wireframe : control_.drawMasses;
+    draw.springsByKind = control_.springsByKind;
     const auto colors = viewer::forceColors(sim->force.size() == sim->state.pos.size()
                                                 ? sim->force
                                                 : std::vector<Vec3>(sim->state.pos.size(), Vec3::Zero()));
     renderer_->drawShadow(*sim, framing_.groundHeight, viewProj, static_cast<float>(height) / 800.0f);
     renderer_->drawSimulation(*sim, colors, sim->grabbed(), draw, viewProj, camera_.eye(),
                               static_cast<float>(height) / 800.0f);
+    try {
+      renderer_->drawShapes(sim->shapes(), heldShape_, halfSize, viewProj, camera_.eye(),
+                            static_cast<float>(height) / 800.0f);
+    } catch (const std::exception&) {
+      // A lab's shapes() that throws (a missing exercise) draws nothing.
+    }
   }
 
   drawGui();
@@ -524,6 +535,7 @@ void Viewer::drawGui() {
     hud.integrator = sim->integrator().name();
     try {
       hud.energies = sim->energies();
+      hud.observables = sim->observables();
       stableDt = predictedStableDt(sim->integrator(), sim->maxAngularFrequency());
     } catch (const std::exception&) {
       // A missing exercise or a broken state: the HUD leaves the numbers out.
