@@ -134,18 +134,23 @@ class Run:
     channel: bytes          # what arrived on the results channel
 
 
-def run_sandboxed(argv, sandbox, env_extra=None, nonce=None):
-    """Run argv in a fresh folder under the sandbox; with a nonce, open the results channel."""
+def run_sandboxed(argv, sandbox, env_extra=None, nonce=None, cwd=None):
+    """Run argv under the sandbox in cwd (default: a fresh folder); with a nonce, open the
+    results channel."""
     ids = sandbox.identity()
     with tempfile.TemporaryDirectory(prefix="springlab-run-") as private:
         # The output file lives in the grader's private folder; the test writes it only
         # through its stdout and stderr, up to the file size limit.
+        os.chmod(private, 0o711)  # the sandbox user may enter, not list
         work = pathlib.Path(private) / "cwd"
         work.mkdir()
         if ids:
             os.chown(work, *ids)
+        if cwd is not None:
+            work = pathlib.Path(cwd)
         log = open(pathlib.Path(private) / "output.txt", "w+b")
-        env = {"PATH": "/usr/bin:/bin", "HOME": str(work), "LANG": "C.UTF-8", "TMPDIR": str(work)}
+        home = pathlib.Path(private) / "cwd"
+        env = {"PATH": "/usr/bin:/bin", "HOME": str(home), "LANG": "C.UTF-8", "TMPDIR": str(home)}
         env.update(env_extra or {})
         fds = ()
         if nonce is not None:
@@ -189,6 +194,8 @@ def run_sandboxed(argv, sandbox, env_extra=None, nonce=None):
         size = log.tell()
         log.seek(max(0, size - 8192))
         output = log.read().decode("utf-8", "replace")
+        if size > 8192:
+            output = f"[... {size - 8192} bytes of output left out ...]\n" + output
         log.close()
         return Run(code, seconds, output, channel)
 
