@@ -541,6 +541,9 @@ def cmd_grade(args):
     print(f"Total: {graded.score:g} / {graded.max_score:g} points ({percent:.1f} %) in {graded.seconds:.1f} s")
     write_submission(graded, out, seed)
     print(f"report: {out / 'report.md'}, Gradescope: {out / 'results.json'}, JUnit: {out / 'junit.xml'}")
+    if args.expect_percent is not None and abs(percent - args.expect_percent) > 1e-9:
+        print(f"expected {args.expect_percent:g} %, got {percent:.1f} %", file=sys.stderr)
+        return 1
     return 0
 
 
@@ -624,6 +627,7 @@ def main():
     one.add_argument("submission", help="a labs/ folder, a folder holding one, or a .zip")
     one.add_argument("--out", help="folder for report.md, results.json, junit.xml (default: out/grades/<name>/)")
     one.add_argument("--quiet", action="store_true", help="print only the totals")
+    one.add_argument("--expect-percent", type=float, help="exit 1 unless the total is this percentage (for CI)")
     common_options(one)
     many = sub.add_parser("grade-all", help="grade every submission folder or .zip under a folder")
     many.add_argument("folder")
