@@ -31,7 +31,8 @@ INSTRUCTOR_ONLY = [
     ".ci", ".ci/*",
     "labs", "labs/*",                  # written afresh from solutions/ instead
 ]
-NEVER = ["build*", "out", ".git", "__pycache__", "*.pyc", ".cache", ".vscode", ".idea"]
+NEVER_DIRS = ["build*", "out", ".git", "__pycache__", ".cache", ".vscode", ".idea"]
+NEVER_FILES = ["*.pyc"]
 
 
 class ReleaseError(Exception):
@@ -46,7 +47,9 @@ def source_files():
         files = [pathlib.Path(p) for p in listed if p and (ROOT / p).is_file()]
     except (OSError, subprocess.CalledProcessError):
         files = [p.relative_to(ROOT) for p in ROOT.rglob("*") if p.is_file()]
-    return sorted(f for f in files if not any(fnmatch.fnmatch(part, pat) for part in f.parts for pat in NEVER))
+    return sorted(f for f in files
+                  if not any(fnmatch.fnmatch(part, pat) for part in f.parts[:-1] for pat in NEVER_DIRS)
+                  and not any(fnmatch.fnmatch(f.name, pat) for pat in NEVER_FILES))
 
 
 def excluded(rel):

@@ -163,7 +163,7 @@ class Cache:
                 continue
             if arg == "-Werror":
                 continue  # a warning in student code is reported, never fatal
-            if arg.startswith("-I") and pathlib.Path(arg[2:]).resolve() == lab.skeleton.resolve():
+            if arg.startswith("-I") and pathlib.PurePath(arg[2:]).parts[-2:] == ("labs", lab.dir):
                 lab_include = arg
                 continue
             flags.append(arg)
@@ -386,7 +386,12 @@ class LabGrader:
     def find_cheats(self, files, objects):
         """Files to grade as the skeleton's: they include the instructor's files, call the
         reference solution, or redefine the framework's, GoogleTest's or the grader's symbols."""
-        framework = (ROOT / "framework" / "include").resolve()
+        # Allowed includes: the submission's own files, the include folders of the lab's
+        # compile flags (the framework's, Eigen's) and the system's.
+        allowed = [(self.work / "src").resolve(), pathlib.Path("/usr")]
+        allowed += [pathlib.Path(f[2:] if f.startswith("-I") else f).resolve()
+                    for i, f in enumerate(self.build.compile_argv)
+                    if f.startswith("-I") or (i > 0 and self.build.compile_argv[i - 1] == "-isystem")]
         flagged = {}
         for obj in objects:
             name = obj.name[:-2]
@@ -394,8 +399,7 @@ class LabGrader:
             for dep in parse_depfile(deps.read_text()) if deps.exists() else []:
                 path = pathlib.Path(dep)
                 resolved = (self.work / path).resolve() if not path.is_absolute() else path.resolve()
-                inside = (resolved.is_relative_to((self.work / "src").resolve()) or resolved.is_relative_to(framework)
-                          or resolved.is_relative_to("/usr"))
+                inside = any(resolved.is_relative_to(folder) for folder in allowed)
                 if not inside:
                     flagged.setdefault(name, f"includes {dep}, a file outside the submission and the framework")
                     break
@@ -633,8 +637,16 @@ def main():
     many.add_argument("folder")
     many.add_argument("--out", help="folder for gradebook.csv and the reports (default: out/grades/<folder>/)")
     common_options(many)
+    prepare = sub.add_parser("prepare", help="build the grading cache only (the autograder's setup.sh)")
+    common_options(prepare)
     args = ap.parse_args()
     try:
+        if args.command == "prepare":
+            labs, cache, sandbox, _, _ = setup(args)
+            for lab in labs:
+                cache.lab(lab, sandbox)
+            print(f"grading cache ready in {cache.path}: {', '.join(lab.dir for lab in labs)}")
+            return 0
         return cmd_grade(args) if args.command == "grade" else cmd_grade_all(args)
     except GradeError as error:
         print(f"springlab grade: {error}", file=sys.stderr)
