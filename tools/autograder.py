@@ -83,7 +83,8 @@ def bundle(out):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(prog=f"springlab {'autograder'.replace('_', '-')}", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out", help="the bundle to write, e.g. autograder.zip")
     args = ap.parse_args()
     if not (ROOT / "solutions").is_dir():

@@ -533,6 +533,8 @@ def setup(args):
 
 
 def cmd_grade(args):
+    if not pathlib.Path(args.submission).exists():
+        raise GradeError(f"{args.submission}: no such file or folder")
     labs, cache, sandbox, compile_sandbox, seed = setup(args)
     out = pathlib.Path(args.out or ROOT / "out" / "grades" / pathlib.Path(args.submission).resolve().name)
     graded = grade_submission(args.submission, cache, labs, seed, args.jobs, sandbox, compile_sandbox)
@@ -567,8 +569,8 @@ def submissions_in(folder):
 
 
 def cmd_grade_all(args):
-    labs, cache, sandbox, compile_sandbox, seed = setup(args)
     entries = submissions_in(args.folder)
+    labs, cache, sandbox, compile_sandbox, seed = setup(args)
     out = pathlib.Path(args.out or ROOT / "out" / "grades" / pathlib.Path(args.folder).resolve().name)
     out.mkdir(parents=True, exist_ok=True)
     for lab in labs:  # find each lab's build once, before the workers start
@@ -625,7 +627,8 @@ def write_gradebook(path, labs, graded_all):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(prog="springlab", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="command", required=True)
     one = sub.add_parser("grade", help="grade one submission")
     one.add_argument("submission", help="a labs/ folder, a folder holding one, or a .zip")
