@@ -83,7 +83,7 @@ def bundle(out):
 
 
 def main():
-    ap = argparse.ArgumentParser(prog=f"springlab {'autograder'.replace('_', '-')}", description=__doc__,
+    ap = argparse.ArgumentParser(prog="springlab autograder", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out", help="the bundle to write, e.g. autograder.zip")
     args = ap.parse_args()

@@ -291,7 +291,7 @@ def redact(message):
     kept, skipping = [], False
     for line in message.splitlines():
         if _VALUE_LINES.match(line) or re.match(r"^.*, actual: .* vs .*$", line):
-            skipping = line.strip().startswith("Expected equality")
+            skipping = skipping or line.strip().startswith("Expected equality")
             continue
         if skipping and line.startswith("  "):
             continue  # the operand lines of "Expected equality of these values:"

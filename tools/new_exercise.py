@@ -217,7 +217,7 @@ Hidden: `MatchesReference{suite}.OnRandomInputs` (1 point).
 
 
 def main():
-    ap = argparse.ArgumentParser(prog=f"springlab {'new_exercise'.replace('_', '-')}", description=__doc__,
+    ap = argparse.ArgumentParser(prog="springlab new-exercise", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("lab", help="the lab's name or folder (rope, 01_rope)")
     ap.add_argument("name", help="snake_case name of the function and its file (drag_force)")

@@ -91,7 +91,7 @@ def release(out, force=False):
 
 
 def main():
-    ap = argparse.ArgumentParser(prog=f"springlab {'release'.replace('_', '-')}", description=__doc__,
+    ap = argparse.ArgumentParser(prog="springlab release", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out", help="folder to write the student tree into")
     ap.add_argument("--force", action="store_true", help="replace OUT if it holds files")
