@@ -59,8 +59,9 @@ def excluded(rel):
 
 def release(out, force=False):
     out = pathlib.Path(out).resolve()
-    if out == ROOT or ROOT in out.parents and not out.is_relative_to(ROOT / "out"):
-        raise ReleaseError(f"{out}: write the release outside the instructor tree (or under out/)")
+    inside = out.relative_to(ROOT).parts if out.is_relative_to(ROOT) else None
+    if inside is not None and (not inside or not (inside[0] == "out" or inside[0].startswith("build"))):
+        raise ReleaseError(f"{out}: write the release outside the instructor tree (or under out/ or build*/)")
     if out.exists():
         if not out.is_dir():
             raise ReleaseError(f"{out}: exists and is not a folder")
