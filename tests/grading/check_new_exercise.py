@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""`springlab new-exercise` on a copy of this tree: every piece is written, the manifest and the
+handout agree, labs/ is fresh, the skeleton's stub names the exercise, every new file compiles
+(-fsyntax-only, warnings as errors), and bad input gives a clear error.
+
+    tests/grading/check_new_exercise.py --work build/tests/grading/new_exercise
+"""
+import argparse
+import pathlib
+import shutil
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+import release  # noqa: E402
+import submission  # noqa: E402
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--work", required=True)
+    args = ap.parse_args()
+    tree = pathlib.Path(args.work).resolve() / "tree"
+    shutil.rmtree(tree, ignore_errors=True)
+    for rel in release.source_files():
+        (tree / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(ROOT / rel, tree / rel)
+    lab = submission.discover_labs()[0]
+    problems = []
+
+    def run(*argv):
+        return subprocess.run([sys.executable, *map(str, argv)], capture_output=True, text=True, cwd=tree)
+
+    made = run(tree / "tools/new_exercise.py", lab.name, "test_drag", "--title", "test drag")
+    print(made.stdout + made.stderr)
+    if made.returncode != 0:
+        problems.append("new-exercise failed")
+    else:
+        checks = [(tree / "tools/make_skeleton.py", "--check", lab.dir),
+                  (tree / "tools/grade.py", "--manifest", tree / "tests" / lab.dir / "exercises.json",
+                   "--check-handout", tree / "handouts" / f"{lab.dir}.md")]
+        for check in checks:
+            result = run(*check)
+            if result.returncode != 0:
+                problems.append(f"{' '.join(map(str, check))}: {result.stdout}{result.stderr}")
+        stub = (tree / "labs" / lab.dir / "test_drag.cpp").read_text()
+        if "throw springlab::NotImplemented" not in stub or "TODO exercise" not in stub:
+            problems.append(f"the skeleton of the new exercise has no TODO and stub:\n{stub}")
+        # The oracle header as tests/CMakeLists.txt generates it.
+        oracle = tree / "oracle"
+        oracle.mkdir()
+        header = (tree / "solutions" / lab.dir / f"{lab.name}.hpp").read_text()
+        (oracle / f"oracle_{lab.name}.hpp").write_text(
+            header.replace(f"namespace springlab::{lab.name} ", f"namespace springlab::{lab.name}_reference "))
+        flags = ["-std=c++20", "-fsyntax-only", "-Wall", "-Wextra", "-Wpedantic", "-Wshadow", "-Wconversion",
+                 "-Wno-sign-conversion", "-Werror", "-Wno-unused-parameter", f"-I{tree / 'framework/include'}",
+                 "-isystem", "/usr/include/eigen3", f"-I{tree / 'tests/support'}", f"-I{oracle}"]
+        for source, include in ((f"solutions/{lab.dir}/test_drag.cpp", f"solutions/{lab.dir}"),
+                                (f"labs/{lab.dir}/test_drag.cpp", f"labs/{lab.dir}"),
+                                (f"tests/{lab.dir}/public/test_drag_test.cpp", f"labs/{lab.dir}"),
+                                (f"tests/{lab.dir}/hidden/test_drag_test.cpp", f"labs/{lab.dir}")):
+            result = subprocess.run(["c++", *flags, f"-I{tree / include}", str(tree / source)],
+                                    capture_output=True, text=True)
+            if result.returncode != 0:
+                problems.append(f"{source} does not compile:\n{result.stderr[-3000:]}")
+    # Bad input: a clear message and exit code 2.
+    for argv, words in ((("no_such_lab", "x_force"), "no lab 'no_such_lab'"),
+                        ((lab.name, "Bad-Name"), "snake_case"),
+                        ((lab.name, "test_drag"), "already exists")):
+        result = run(tree / "tools/new_exercise.py", *argv)
+        if result.returncode != 2 or words not in result.stderr:
+            problems.append(f"new-exercise {' '.join(argv)}: exit {result.returncode}, {result.stderr.strip()}")
+    for problem in problems:
+        print(f"PROBLEM: {problem}", file=sys.stderr)
+    if not problems:
+        print("new-exercise: scaffold consistent, compiles, bad input refused")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

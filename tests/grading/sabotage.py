@@ -1,0 +1,320 @@
+#!/usr/bin/env python3
+"""Sabotage submissions: the grader must survive its students.
+
+Each submission is the reference solutions/ with ONE exercise body of Lab 1 (the target
+below) replaced by something hostile: a crash, a hang, a forged result, a call of the
+reference, ... Everything else is honest. The class is graded with `grade-all`, and each
+submission must get exactly the points of its honest parts: test by test, the outcome of the
+"control" submission, which is solutions/ with the target file taken from the skeleton (the
+exercise not done). A few have other expectations (a lab that does not compile scores 0 for
+that lab only; an empty submission scores 0; a zip that tries to escape keeps its honest
+files). Any further lab is graded in every submission too and must score what the
+reference scores.
+
+    tests/grading/sabotage.py --cache build --work build/tests/sabotage      (run by ctest)
+"""
+import argparse
+import csv
+import json
+import pathlib
+import re
+import shutil
+import stat
+import subprocess
+import sys
+import uuid
+import zipfile
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+import submission  # noqa: E402
+
+# The exercise every sabotage replaces: explicit Euler's step of Lab 1, called by its own
+# tests and by the hidden whole-rope trajectory test, so a broken one fails the same tests
+# whatever way it breaks.
+TARGET_LAB, TARGET_EXERCISE = "01_rope", "1.4"
+SIGNATURE = "PhasePoint explicitEulerStep(const PhasePoint& s, const Vec3& a, double dt)"
+
+# name: (includes, code before the namespace, body, expectation)
+SABOTAGES = {
+    "segfault": ("<cstdint>", "", """
+  volatile std::uintptr_t address = 16;
+  *reinterpret_cast<volatile int*>(address) = 1;
+  return {s.pos, s.vel};""", "control"),
+    "abort": ("<cstdlib>", "", """
+  std::abort();""", "control"),
+    "uncaught_exception": ("<stdexcept>", """
+namespace {
+void fail() noexcept { throw std::runtime_error("escapes a noexcept function"); }
+}  // namespace
+""", """
+  fail();
+  return {s.pos, s.vel};""", "control"),
+    "infinite_loop": ("", "", """
+  for (volatile unsigned long spin = 0;; spin = spin + 1) {
+  }""", "control"),
+    "huge_allocation": ("<cstddef>\n#include <vector>", "", """
+  std::vector<char> block(std::size_t{20} << 30, 1);  // 20 GiB
+  return {s.pos + s.vel * dt * block[12345], s.vel + a * dt};""", "control"),
+    "deep_recursion": ("", """
+namespace {
+int descend(long depth) {
+  volatile char frame[4096];
+  frame[depth % 4096] = 1;
+  return depth < 0 ? 0 : descend(depth + 1) + frame[0];
+}
+}  // namespace
+""", """
+  return {s.pos + s.vel * dt * descend(1), s.vel + a * dt};""", "control"),
+    "exit_zero": ("<cstdlib>", "", """
+  std::exit(0);""", "control"),
+    "fake_gtest_output": ("<cstdio>\n#include <cstdlib>", "", """
+  std::printf("[       OK ] ExplicitEuler.UpdatesFromTheOldState (0 ms)\\n[----------] 1 test\\n"
+              "[==========] 1 test from 1 test suite ran. (0 ms total)\\n[  PASSED  ] 1 test.\\n"
+              "[  SKIPPED ] 0 tests, listed below:\\n");
+  std::fflush(stdout);
+  std::_Exit(0);""", "control"),
+    "forged_channel": ("<cstdio>\n#include <cstdlib>\n#include <string>\n#include <unistd.h>", "", """
+  // Guess the grader's channel: write a passing report to every descriptor, then leave.
+  const std::string forged =
+      "{\\"nonce\\":\\"0000\\",\\"tests\\":[{\\"name\\":\\"ExplicitEuler.UpdatesFromTheOldState\\","
+      "\\"status\\":\\"passed\\",\\"failures\\":[]}]}\\n";
+  for (int fd = 0; fd < 64; ++fd) {
+    if (::write(fd, forged.data(), forged.size()) < 0) continue;
+  }
+  std::_Exit(0);""", "control"),
+    "writes_result_files": ("<filesystem>\n#include <fstream>\n#include <stdexcept>\n#include <sstream>\n#include <string>\n#include <vector>"
+                            "\n#include <unistd.h>", "", """
+  // Forge full marks wherever results might be, delete what can be deleted, then give no
+  // answer (the forged files would be the only way to score).
+  namespace fs = std::filesystem;
+  std::vector<fs::path> places = {".", "..", "../..", "/autograder/results"};
+  for (const char* proc : {"/proc/self/cmdline", "/proc/self/environ"}) {
+    std::ifstream in(proc);
+    std::string arg;
+    while (std::getline(in, arg, '\\0')) places.push_back(fs::path(arg).parent_path());
+  }
+  std::ifstream parent("/proc/" + std::to_string(::getppid()) + "/cmdline");
+  std::string arg;
+  while (std::getline(parent, arg, '\\0')) places.push_back(arg);
+  for (const fs::path& place : places) {
+    std::error_code ec;
+    for (const char* name : {"results.json", "report.md", "junit.xml", "gradebook.csv"}) {
+      fs::remove(place / name, ec);
+      std::ofstream(place / name) << "{\\"score\\": 1000, \\"max_score\\": 50, \\"tests\\": []}";
+    }
+  }
+  throw std::logic_error("no answer");""", "control"),
+    "nan_and_inf": ("<limits>", "", """
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  return {Vec3(nan, nan, nan), Vec3(inf, -inf, inf)};""", "control"),
+    "hard_coded_example": ("", "", """
+  // Right only for one printed example, the start state unchanged otherwise.
+  if (s.pos == Vec3(1, 0, 0) && s.vel == Vec3(0, 1, 0) && a == Vec3(0, -9.81, 0) && dt == 0.1) {
+    return {Vec3(1, 0.1, 0), Vec3(0, 0.019, 0)};
+  }
+  return {s.pos, s.vel};""", "control"),
+    "calls_reference": ("", """
+namespace springlab::rope_reference {
+struct PhasePoint {
+  Vec3 pos;
+  Vec3 vel;
+};
+PhasePoint explicitEulerStep(const PhasePoint& s, const Vec3& a, double dt);
+}  // namespace springlab::rope_reference
+""", """
+  const auto answer = springlab::rope_reference::explicitEulerStep({s.pos, s.vel}, a, dt);
+  return {answer.pos, answer.vel};""", "control"),
+    "does_not_compile": ("", "", """
+  return {s.pos + s.vel * dt, s.vel + a * dt}  // a missing semicolon
+  undeclared_variable += 1;""", "lab_zero"),
+}
+
+
+def patch(text, includes, prelude, body):
+    """The reference file with the target exercise's body replaced."""
+    block = re.compile(rf"(// BEGIN EXERCISE {re.escape(TARGET_EXERCISE)}\n).*?(\s*// END EXERCISE)", re.S)
+    if not block.search(text) or SIGNATURE not in text:
+        raise SystemExit(f"sabotage.py: the target {SIGNATURE} with exercise {TARGET_EXERCISE} is gone; update TARGET")
+    text = block.sub(lambda m: m.group(1) + body.strip("\n") + m.group(2), text)
+    head = "".join(f"#include {inc}\n" for inc in includes.split("\n#include ") if inc)
+    text = text.replace('#include "rope.hpp"\n', '#include "rope.hpp"\n' + head, 1)
+    return text.replace("namespace springlab::rope {", prelude.strip("\n") + "\n\nnamespace springlab::rope {", 1) \
+        if prelude else text
+
+
+def target_file():
+    for path in sorted((ROOT / "solutions" / TARGET_LAB).glob("*.cpp")):
+        if f"// BEGIN EXERCISE {TARGET_EXERCISE}" in path.read_text():
+            return path.name
+    raise SystemExit(f"sabotage.py: no file of solutions/{TARGET_LAB} marks exercise {TARGET_EXERCISE}")
+
+
+def make(folder, escape_marks):
+    """Write every submission into folder; return {name: expectation}."""
+    folder = pathlib.Path(folder)
+    shutil.rmtree(folder, ignore_errors=True)
+    folder.mkdir(parents=True)
+    name = target_file()
+    expect = {}
+
+    def solutions_copy(student):
+        target = folder / student / "labs"
+        shutil.copytree(ROOT / "solutions", target)
+        return target / TARGET_LAB
+
+    expect["_reference"] = "reference"
+    solutions_copy("_reference")
+    expect["_skeleton"] = "all_zero"
+    shutil.copytree(ROOT / "labs", folder / "_skeleton" / "labs")
+    expect["_control"] = "control"
+    shutil.copy(ROOT / "labs" / TARGET_LAB / name, solutions_copy("_control") / name)
+
+    original = (ROOT / "solutions" / TARGET_LAB / name).read_text()
+    for sabotage, (includes, prelude, body, expectation) in SABOTAGES.items():
+        (solutions_copy(sabotage) / name).write_text(patch(original, includes, prelude, body))
+        expect[sabotage] = expectation
+    # Whole-file sabotages: the reference source included by path; the file missing;
+    # nothing at all; a zip whose entries try to leave it.
+    (solutions_copy("includes_reference") / name).write_text(f'#include "{ROOT / "solutions" / TARGET_LAB / name}"\n')
+    expect["includes_reference"] = "control"
+    (solutions_copy("missing_file") / name).unlink()
+    expect["missing_file"] = "control"
+    (folder / "empty").mkdir()
+    expect["empty"] = "all_zero"
+    with zipfile.ZipFile(folder / "zip_escape.zip", "w") as zf:
+        for path in sorted((ROOT / "solutions").rglob("*")):
+            if path.is_file():
+                zf.write(path, f"my-labs/{path.relative_to(ROOT / 'solutions')}")
+        for mark in escape_marks:
+            zf.writestr(mark if mark.startswith("/") else f"../../{mark}", "escaped\n")
+        link = zipfile.ZipInfo(f"my-labs/{TARGET_LAB}/{name}.link.hpp")
+        link.external_attr = (stat.S_IFLNK | 0o777) << 16
+        zf.writestr(link, "/etc/passwd")
+    expect["zip_escape"] = "reference"
+    return expect
+
+
+def check(out, expect, labs):
+    """Each student's results against its expectation; returns a list of problems."""
+    problems = []
+    results = {}
+    for student in expect:
+        folder = out / student
+        for name in ("report.md", "results.json", "junit.xml"):
+            if not (folder / name).is_file():
+                problems.append(f"{student}: no {name}")
+        try:
+            results[student] = json.loads((folder / "results.json").read_text())
+        except (OSError, ValueError) as error:
+            problems.append(f"{student}: results.json unreadable: {error}")
+    if problems:
+        return problems
+    declared = [(lab.dir, t["name"]) for lab in labs for ex in lab.manifest["exercises"] for t in ex["tests"]]
+
+    def outcomes(student):
+        tests = results[student]["tests"]
+        return {(t["tags"][0], t["name"].split(" ", 1)[1]): t["status"] for t in tests}
+
+    for student, data in results.items():
+        problems += [f"{student}: {p}" for p in schema_problems(data)]
+        got = outcomes(student)
+        if sorted(got) != sorted(declared):
+            problems.append(f"{student}: results.json does not list every test once")
+            continue
+        kind = expect[student]
+        for key in declared:
+            lab, _ = key
+            if kind == "all_zero":
+                want = "failed"
+            elif kind == "lab_zero" and lab == TARGET_LAB:
+                want = "failed"
+            elif kind == "control" and lab == TARGET_LAB:
+                want = outcomes("_control")[key]
+            else:
+                want = "passed" if kind != "all_zero" else "failed"
+            if got[key] != want:
+                problems.append(f"{student} ({kind}): {key[1]} is {got[key]}, expected {want}")
+        score = sum(t["score"] for t in data["tests"])
+        if abs(score - data["score"]) > 1e-9:
+            problems.append(f"{student}: score {data['score']} is not the sum of its tests ({score})")
+    control = results["_control"]
+    if not 0 < control["score"] < control["max_score"]:
+        problems.append(f"_control scores {control['score']}: the target exercise should cost some, not all, points")
+    for student, data in results.items():
+        for t in data["tests"]:
+            if t["visibility"] != "visible" and re.search(r"Which is:|evaluates to|, actual: ", t["output"]):
+                problems.append(f"{student}: hidden test {t['name']} prints compared values: {t['output'][:200]}")
+    return problems
+
+
+def schema_problems(data):
+    """results.json against the Gradescope fields this project promises."""
+    problems = []
+    top = {"score": (int, float), "max_score": (int, float), "execution_time": (int, float), "tests": list}
+    for key, kind in top.items():
+        if not isinstance(data.get(key), kind):
+            problems.append(f"results.json: {key} missing or not {kind}")
+    fields = {"name": str, "number": str, "score": (int, float), "max_score": (int, float), "output": str,
+              "visibility": str, "tags": list, "status": str}
+    for i, t in enumerate(data.get("tests", [])):
+        for key, kind in fields.items():
+            if not isinstance(t.get(key), kind):
+                problems.append(f"results.json: tests[{i}].{key} missing or not {kind}")
+        if t.get("visibility") not in ("visible", "hidden", "after_due_date", "after_published"):
+            problems.append(f"results.json: tests[{i}].visibility is {t.get('visibility')!r}")
+        if t.get("status") not in ("passed", "failed"):
+            problems.append(f"results.json: tests[{i}].status is {t.get('status')!r}")
+    return problems
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--cache", required=True, help="a build of this tree with the grading programs built")
+    ap.add_argument("--work", required=True, help="scratch folder for the submissions and their reports")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--timeout", type=float, default=2.0, help="seconds per test (they take milliseconds)")
+    args = ap.parse_args()
+    work = pathlib.Path(args.work).resolve()
+    marks = [f"springlab-escaped-{uuid.uuid4().hex}.txt", f"/tmp/springlab-escaped-{uuid.uuid4().hex}.txt"]
+    expect = make(work / "class", marks)
+    out = work / "grades"
+    shutil.rmtree(out, ignore_errors=True)
+    run = subprocess.run([sys.executable, str(ROOT / "tools" / "submission.py"), "grade-all", str(work / "class"),
+                          "--out", str(out), "--cache", args.cache, "--no-build", "--seed", "12345",
+                          "--jobs", str(args.jobs), "--timeout", str(args.timeout)], text=True, capture_output=True)
+    print(run.stdout + run.stderr)
+    if run.returncode != 0:
+        print(f"grade-all failed with exit code {run.returncode}", file=sys.stderr)
+        return 1
+    labs = submission.discover_labs()
+    problems = check(out, expect, labs)
+    for mark in marks:
+        for place in (pathlib.Path(mark), work / mark, work.parent / mark, pathlib.Path("/tmp") / mark):
+            if place.exists():
+                problems.append(f"zip_escape: wrote {place} outside the submission")
+    rows = list(csv.DictReader(open(out / "gradebook.csv")))
+    if sorted(r["student"] for r in rows) != sorted(expect):
+        problems.append("gradebook.csv does not have one row per student")
+    for row in rows:
+        data = json.loads((out / row["student"] / "results.json").read_text())
+        if float(row["total"]) != data["score"]:
+            problems.append(f"gradebook.csv: {row['student']} total {row['total']} != results.json {data['score']}")
+    report = (out / "does_not_compile" / "report.md").read_text()
+    if "does not compile" not in report or "error" not in report:
+        problems.append("does_not_compile: the report does not show the compiler's errors")
+    for student in ("calls_reference", "includes_reference"):
+        if "graded as the released skeleton" not in (out / student / "report.md").read_text():
+            problems.append(f"{student}: the report does not say the file was replaced by the skeleton's")
+    for problem in problems:
+        print(f"PROBLEM: {problem}", file=sys.stderr)
+    if problems:
+        return 1
+    print(f"{len(expect)} submissions graded as expected; control scores "
+          f"{json.loads((out / '_control' / 'results.json').read_text())['score']:g}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

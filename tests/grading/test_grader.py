@@ -1,0 +1,181 @@
+#!/usr/bin/env python3
+"""Unit tests of the grader's pieces: manifests, handout agreement, hidden-test redaction, zip
+safety, outputs (Gradescope results.json, JUnit XML), submission folders."""
+import json
+import pathlib
+import stat
+import sys
+import tempfile
+import unittest
+import xml.etree.ElementTree as ET
+import zipfile
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+import grade  # noqa: E402
+import submission  # noqa: E402
+
+MANIFEST = {"lab": "09_toy", "title": "Lab 9: toy", "handout": "handouts/09_toy.md", "exercises": [
+    {"id": "9.1", "title": "one", "tests": [{"name": "A.B", "points": 2, "visibility": "visible"},
+                                           {"name": "H.B", "points": 1, "visibility": "hidden"}]}]}
+
+
+class Temp(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.tmp = pathlib.Path(self.dir.name)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def manifest(self, data):
+        path = self.tmp / "exercises.json"
+        path.write_text(json.dumps(data))
+        return path
+
+
+class ManifestErrorsNameFileAndField(Temp):
+    def test_valid(self):
+        m = grade.load_manifest(self.manifest(MANIFEST))
+        self.assertEqual(m["points"], 3)
+        self.assertEqual(m["exercises"][0]["points"], 3)
+
+    def test_missing_points(self):
+        data = json.loads(json.dumps(MANIFEST))
+        del data["exercises"][0]["tests"][1]["points"]
+        with self.assertRaisesRegex(grade.ManifestError, r"exercises.json: exercises\[0\]\.tests\[1\]\.points: missing"):
+            grade.load_manifest(self.manifest(data))
+
+    def test_bad_visibility(self):
+        data = json.loads(json.dumps(MANIFEST))
+        data["exercises"][0]["tests"][0]["visibility"] = "secret"
+        with self.assertRaisesRegex(grade.ManifestError, r"tests\[0\]\.visibility: must be one of"):
+            grade.load_manifest(self.manifest(data))
+
+    def test_duplicate_and_negative(self):
+        data = json.loads(json.dumps(MANIFEST))
+        data["exercises"][0]["tests"][1]["name"] = "A.B"
+        with self.assertRaisesRegex(grade.ManifestError, "declared twice"):
+            grade.load_manifest(self.manifest(data))
+        data["exercises"][0]["tests"][1]["points"] = -1
+        with self.assertRaisesRegex(grade.ManifestError, "must be >= 0"):
+            grade.load_manifest(self.manifest(data))
+
+    def test_not_json(self):
+        path = self.tmp / "exercises.json"
+        path.write_text("{")
+        with self.assertRaisesRegex(grade.ManifestError, "exercises.json: not valid JSON"):
+            grade.load_manifest(path)
+
+    def test_handout_points_must_agree(self):
+        m = grade.load_manifest(self.manifest(MANIFEST))
+        handout = self.tmp / "h.md"
+        handout.write_text("Worth 3 points.\n### Exercise 9.1: one (2 points)\n")
+        self.assertIn("missing the heading line '### Exercise 9.1: one (3 points)'", grade.check_handout(m, handout)[0])
+        handout.write_text("Worth 3 points.\n### Exercise 9.1: one (3 points)\n")
+        self.assertEqual(grade.check_handout(m, handout), [])
+
+    def test_every_lab_of_this_tree_agrees(self):
+        for lab in submission.discover_labs():
+            self.assertEqual(grade.check_handout(lab.manifest, ROOT / lab.manifest["handout"]), [])
+
+
+class HiddenMessagesShowNoValues(unittest.TestCase):
+    def test_gtest_value_lines_dropped(self):
+        eq = ("Expected equality of these values:\n  got.masses.size()\n    Which is: 3\n  want.masses.size()\n"
+              "    Which is: 4\nwrong number of masses for a rope of 4 masses (seed 1)")
+        self.assertEqual(grade.redact(eq), "wrong number of masses for a rope of 4 masses (seed 1)")
+        lt = "Expected: (relativeError(a, b)) < (kTolerance), actual: 0.25 vs 1e-09\nspring force is wrong for x = (1, 2, 3)"
+        self.assertEqual(grade.redact(lt), "spring force is wrong for x = (1, 2, 3)")
+        near = ("The difference between a.k and b.k is 2, which exceeds 1e-9, where\na.k evaluates to 3,\n"
+                "b.k evaluates to 5, and\n1e-9 evaluates to 1e-09.\nspring 2 has the wrong stiffness")
+        self.assertEqual(grade.redact(near), "spring 2 has the wrong stiffness")
+        truth = "Value of: sameEnds\n  Actual: false\nExpected: true\nspring 1 joins the wrong masses"
+        self.assertEqual(grade.redact(truth), "spring 1 joins the wrong masses")
+
+    def test_no_message_left(self):
+        self.assertIn("values are not shown", grade.redact("Expected: (x) < (y), actual: 1 vs 2"))
+
+
+class ZipsStayInside(Temp):
+    def test_escaping_entries_skipped(self):
+        archive = self.tmp / "s.zip"
+        with zipfile.ZipFile(archive, "w") as zf:
+            zf.writestr("labs/01_rope/a.cpp", "ok")
+            zf.writestr("../evil.txt", "x")
+            zf.writestr("/abs.txt", "x")
+            zf.writestr("labs/../../evil2.txt", "x")
+            link = zipfile.ZipInfo("labs/01_rope/link.hpp")
+            link.external_attr = (stat.S_IFLNK | 0o777) << 16
+            zf.writestr(link, "/etc/passwd")
+        into = self.tmp / "x" / "into"
+        into.mkdir(parents=True)
+        notes = []
+        submission.safe_extract(archive, into, notes)
+        self.assertEqual(sorted(p.relative_to(into).as_posix() for p in into.rglob("*") if p.is_file()),
+                         ["labs/01_rope/a.cpp"])
+        self.assertEqual(len(notes), 4)
+        self.assertFalse((self.tmp / "x" / "evil.txt").exists())
+
+    def test_not_a_zip(self):
+        bad = self.tmp / "bad.zip"
+        bad.write_text("no")
+        with self.assertRaisesRegex(submission.GradeError, "bad.zip: not a readable zip file"):
+            submission.safe_extract(bad, self.tmp, [])
+
+
+class Outputs(unittest.TestCase):
+    def lab(self):
+        m = json.loads(json.dumps(MANIFEST))
+        m["points"] = 3
+        ex = m["exercises"][0]
+        ex["points"] = 3
+        results = [grade.TestResult(ex, ex["tests"][0], True, "", 0.1),
+                   grade.TestResult(ex, ex["tests"][1], False, "wrong for x = 1", 0.2)]
+        return grade.LabResult(m, results, ["a note"])
+
+    def test_results_json_has_gradescope_fields(self):
+        data = grade.gradescope_results([self.lab()], 1.5, 42)
+        self.assertEqual((data["score"], data["max_score"], data["execution_time"]), (2, 3, 1.5))
+        t = data["tests"][1]
+        self.assertEqual({k: t[k] for k in ("number", "score", "max_score", "visibility", "status")},
+                         {"number": "9.1", "score": 0, "max_score": 1, "visibility": "hidden", "status": "failed"})
+        self.assertEqual(t["tags"], ["09_toy", "exercise 9.1"])
+        self.assertIn("SPRINGLAB_SEED=42", data["output"])
+
+    def test_junit(self):
+        root = ET.fromstring(grade.junit_xml([self.lab()], 1.0).split("?>", 1)[1])
+        suite = root.find("testsuite")
+        self.assertEqual((suite.get("tests"), suite.get("failures")), ("2", "1"))
+        self.assertEqual(root.findall(".//failure")[0].text, "wrong for x = 1")
+
+    def test_markdown_per_exercise(self):
+        text = grade.report_markdown([self.lab()], "Grade of x", 1)
+        self.assertIn("### Exercise 9.1: one (2 / 3 points)", text)
+        self.assertIn("a note", text)
+
+
+class SubmissionFolders(Temp):
+    def test_duplicate_students(self):
+        (self.tmp / "ann").mkdir()
+        (self.tmp / "ann.zip").write_bytes(b"")
+        with self.assertRaisesRegex(submission.GradeError, "two submissions for ann"):
+            submission.submissions_in(self.tmp)
+
+    def test_empty_class(self):
+        with self.assertRaisesRegex(submission.GradeError, "holds no submission"):
+            submission.submissions_in(self.tmp)
+
+    def test_lab_found_at_any_depth(self):
+        lab = submission.discover_labs()[0]
+        (self.tmp / "repo" / "labs" / lab.dir).mkdir(parents=True)
+        (self.tmp / "deeper" / "x" / lab.dir).mkdir(parents=True)
+        self.assertEqual(submission.find_lab_folder(self.tmp, lab), self.tmp / "repo" / "labs" / lab.dir)
+
+    def test_depfile(self):
+        self.assertEqual(submission.parse_depfile("obj/a.o: src/a.cpp \\\n /usr/x\\ y.h src/b.hpp\n"),
+                         ["src/a.cpp", "/usr/x y.h", "src/b.hpp"])
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""Write the tree a student receives: framework, labs/ (generated afresh from solutions/),
+public tests, handouts, scenes, README and the entry script. Never solutions/, hidden tests,
+the grader's own tests and tools, or the course author's notes.
+
+    tools/release.py OUT            OUT must not exist, or be an empty folder
+    tools/release.py OUT --force    replace OUT
+
+What stays out is listed below (INSTRUCTOR_ONLY); tests/grading/check_release.py builds the
+result and checks that nothing of the reference leaks into it.
+"""
+import argparse
+import fnmatch
+import pathlib
+import shutil
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tools"))
+import make_skeleton  # noqa: E402
+
+# Paths (relative, glob patterns) that only the instructor's tree has.
+INSTRUCTOR_ONLY = [
+    "solutions", "solutions/*",        # the reference
+    "tests/*/hidden", "tests/*/hidden/*",  # hidden grading tests
+    "tests/grading", "tests/grading/*",    # the grader's own tests (sabotage, release, ...)
+    "tools/submission.py", "tools/release.py", "tools/autograder.py", "tools/new_exercise.py",
+    "tools/make_skeleton.py",
+    "handouts/authoring.md",
+    ".ci", ".ci/*",
+    "labs", "labs/*",                  # written afresh from solutions/ instead
+]
+NEVER_DIRS = ["build*", "out", ".git", "__pycache__", ".cache", ".vscode", ".idea"]
+NEVER_FILES = ["*.pyc"]
+
+
+class ReleaseError(Exception):
+    pass
+
+
+def source_files():
+    """The instructor tree's files: git's list when it is a checkout, else a walk."""
+    try:
+        listed = subprocess.run(["git", "-C", str(ROOT), "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+                                capture_output=True, check=True).stdout.decode().split("\0")
+        files = [pathlib.Path(p) for p in listed if p and (ROOT / p).is_file()]
+    except (OSError, subprocess.CalledProcessError):
+        files = [p.relative_to(ROOT) for p in ROOT.rglob("*") if p.is_file()]
+    return sorted(f for f in files
+                  if not any(fnmatch.fnmatch(part, pat) for part in f.parts[:-1] for pat in NEVER_DIRS)
+                  and not any(fnmatch.fnmatch(f.name, pat) for pat in NEVER_FILES))
+
+
+def excluded(rel):
+    text = rel.as_posix()
+    return any(fnmatch.fnmatch(text, pat) for pat in INSTRUCTOR_ONLY)
+
+
+def release(out, force=False):
+    out = pathlib.Path(out).resolve()
+    inside = out.relative_to(ROOT).parts if out.is_relative_to(ROOT) else None
+    if inside is not None and (not inside or not (inside[0] == "out" or inside[0].startswith("build"))):
+        raise ReleaseError(f"{out}: write the release outside the instructor tree (or under out/ or build*/)")
+    if out.exists():
+        if not out.is_dir():
+            raise ReleaseError(f"{out}: exists and is not a folder")
+        if any(out.iterdir()):
+            if not force:
+                raise ReleaseError(f"{out}: not empty (use --force to replace it)")
+            shutil.rmtree(out)
+    written = 0
+    for rel in source_files():
+        if excluded(rel):
+            continue
+        target = out / rel
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(ROOT / rel, target)
+        written += 1
+    # labs/: generated now from solutions/, so the release can never hold a stale skeleton.
+    labs = sorted(p.name for p in (ROOT / "solutions").iterdir() if p.is_dir())
+    try:
+        for lab in labs:
+            for path, text in make_skeleton.generate(lab).items():
+                target = out / path.relative_to(ROOT)
+                target.parent.mkdir(parents=True, exist_ok=True)
+                target.write_text(text)
+                written += 1
+    except make_skeleton.SkeletonError as error:
+        raise ReleaseError(f"generating labs/: {error}") from None
+    return out, written, labs
+
+
+def main():
+    ap = argparse.ArgumentParser(prog="springlab release", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("out", help="folder to write the student tree into")
+    ap.add_argument("--force", action="store_true", help="replace OUT if it holds files")
+    args = ap.parse_args()
+    if not (ROOT / "solutions").is_dir():
+        print("springlab release: this tree has no solutions/: releases are made from the instructor tree",
+              file=sys.stderr)
+        return 2
+    try:
+        out, written, labs = release(args.out, args.force)
+    except ReleaseError as error:
+        print(f"springlab release: {error}", file=sys.stderr)
+        return 2
+    print(f"student release written to {out}: {written} files, labs {', '.join(labs)}; "
+          f"no solutions/, no hidden tests")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
