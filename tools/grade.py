@@ -27,6 +27,7 @@ import re
 import resource
 import secrets
 import select
+import shutil
 import signal
 import subprocess
 import sys
@@ -107,7 +108,7 @@ class Sandbox:
     drop_to: str = "nobody"  # the user tests run as when the grader is root
 
     def identity(self):
-        if os.geteuid() != 0:
+        if os.geteuid() != 0 or not self.drop_to:
             return None
         user = pwd.getpwnam(self.drop_to)
         return user.pw_uid, user.pw_gid
@@ -523,6 +524,15 @@ def main():
         print(f"{binary}: no such test program (was the lab built?)", file=sys.stderr)
         return 2
     sandbox = Sandbox(timeout=args.timeout, memory_mb=args.memory_limit_mb)
+    shown = binary
+    reachable = tempfile.TemporaryDirectory(prefix="springlab-binary-")
+    if sandbox.identity():
+        # The sandbox user may not reach the build folder (a checkout under /root): a copy.
+        os.chmod(reachable.name, 0o711)
+        copy = pathlib.Path(reachable.name) / pathlib.Path(binary).name
+        shutil.copy2(binary, copy)
+        os.chmod(copy, 0o755)
+        binary = str(copy)
     try:
         present = check_binary_against_manifest(binary, manifest, args.manifest, sandbox,
                                                 student_build=not (pathlib.Path(args.manifest).resolve().parents[2] / "solutions").exists())
@@ -531,7 +541,7 @@ def main():
         return 2
 
     seed = draw_seed(args.seed)
-    print(f"{manifest['title']}: grading {binary} (SPRINGLAB_SEED={seed})")
+    print(f"{manifest['title']}: grading {shown} (SPRINGLAB_SEED={seed})")
     started = time.monotonic()
     results = grade_binary(binary, manifest, seed, sandbox, args.jobs, present)
     lab = LabResult(manifest, results, seed=seed, seconds=time.monotonic() - started)

@@ -370,6 +370,9 @@ class LabGrader:
         if run.returncode is None:
             return None, f"{name}: compiling took longer than {self.compile_sandbox.timeout:g} s"
         if run.returncode != 0:
+            outside = self.outside_includes(flags, name)
+            if outside:
+                return None, f"{name} includes {outside}, a file outside the submission and the framework"
             return None, first_errors(run.output)
         if run.output.strip():
             self.notes.append(f"{name}: the compiler warns:\n{grade.tail(run.output, 12)}")
@@ -383,15 +386,30 @@ class LabGrader:
         return private / f"{name}.o", None
 
     # -- the checks
-    def find_cheats(self, files, objects):
-        """Files to grade as the skeleton's: they include the instructor's files, call the
-        reference solution, or redefine the framework's, GoogleTest's or the grader's symbols."""
-        # Allowed includes: the submission's own files, the include folders of the lab's
-        # compile flags (the framework's, Eigen's) and the system's.
+    def allowed_folders(self):
+        """The submission's own files, the include folders of the lab's flags, the system's."""
         allowed = [(self.work / "src").resolve(), pathlib.Path("/usr")]
         allowed += [pathlib.Path(f[2:] if f.startswith("-I") else f).resolve()
                     for i, f in enumerate(self.build.compile_argv)
                     if f.startswith("-I") or (i > 0 and self.build.compile_argv[i - 1] == "-isystem")]
+        return allowed
+
+    def outside_includes(self, flags, name):
+        """The first file a source includes from outside the allowed folders (names only:
+        the compiler's error messages could quote such a file)."""
+        run = subprocess.run(flags + ["-M", "-MG", f"src/{name}"], cwd=self.work, capture_output=True, text=True)
+        allowed = self.allowed_folders()
+        for dep in parse_depfile(run.stdout):
+            path = pathlib.Path(dep)
+            resolved = (self.work / path).resolve() if not path.is_absolute() else path.resolve()
+            if not any(resolved.is_relative_to(folder) for folder in allowed):
+                return dep
+        return None
+
+    def find_cheats(self, files, objects):
+        """Files to grade as the skeleton's: they include the instructor's files, call the
+        reference solution, or redefine the framework's, GoogleTest's or the grader's symbols."""
+        allowed = self.allowed_folders()
         flagged = {}
         for obj in objects:
             name = obj.name[:-2]
@@ -529,6 +547,14 @@ def setup(args):
     sandbox = grade.Sandbox(timeout=args.timeout, memory_mb=args.memory_limit_mb)
     compile_sandbox = grade.Sandbox(timeout=COMPILE_TIMEOUT, memory_mb=0, file_mb=256)
     cache = Cache(args.cache, labs, build=not args.no_build, jobs=args.jobs)
+    if compile_sandbox.identity():
+        # The compiler runs as the sandbox user only if that user can read the framework's
+        # headers (not so in a checkout under /root); else as us, with the include check below.
+        folders = {f[2:] for lab in labs for f in cache.lab(lab, sandbox).compile_argv if f.startswith("-I")}
+        probe = grade.run_sandboxed(["/bin/sh", "-c", " && ".join(f"test -r {shlex.quote(d)} -a -x {shlex.quote(d)}"
+                                                                  for d in sorted(folders)) or "true"], compile_sandbox)
+        if probe.returncode != 0:
+            compile_sandbox.drop_to = None
     return labs, cache, sandbox, compile_sandbox, grade.draw_seed(args.seed)
 
 

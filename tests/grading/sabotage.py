@@ -274,7 +274,7 @@ def main():
     ap.add_argument("--cache", required=True, help="a build of this tree with the grading programs built")
     ap.add_argument("--work", required=True, help="scratch folder for the submissions and their reports")
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--timeout", type=float, default=2.0, help="seconds per test (they take milliseconds)")
+    ap.add_argument("--timeout", type=float, default=3.0, help="seconds per test (they take milliseconds)")
     args = ap.parse_args()
     work = pathlib.Path(args.work).resolve()
     marks = [f"springlab-escaped-{uuid.uuid4().hex}.txt", f"/tmp/springlab-escaped-{uuid.uuid4().hex}.txt"]
