@@ -76,7 +76,7 @@ def work_precision(folder):
                 ax.scatter([max(float(r[cost_key]), 1e-9) for r in bad], [top] * len(bad), marker="x", color=colour,
                            s=50, zorder=5)
         ax.axhline(top, color="0.6", lw=0.8, ls=":")
-        ax.text(0.01, 0.97, "x: blew up", transform=ax.transAxes, va="top", fontsize=8, color="0.3")
+        ax.text(0.99, 0.97, "x: blew up", transform=ax.transAxes, va="top", ha="right", fontsize=8, color="0.3")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel(xlabel)

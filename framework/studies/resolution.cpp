@@ -83,8 +83,14 @@ ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& s
     study.rows.back().dt = spec.dt;
   }
   std::vector<RunResult> runs(specs.size());
-  parallelFor(static_cast<int>(specs.size()), o.threads, [&](int i) { runs[i] = runScene(registry, specs[i]); },
-              o.progress ? "resolution runs" : "");
+  std::vector<double> walls(specs.size());
+  parallelFor(static_cast<int>(specs.size()), o.threads, [&](int i) {
+    // The first run gives the observable and warms up; the timed runs give the wall time.
+    runs[i] = runScene(registry, specs[i]);
+    std::vector<double> timed;
+    for (int r = 0; r < o.repeats; ++r) timed.push_back(runScene(registry, specs[i]).wallSeconds);
+    walls[i] = timed.empty() ? runs[i].wallSeconds : median(timed);
+  }, o.progress ? "resolution runs" : "");
 
   // Errors against the finest; the chosen row is the coarsest from which every finer one fits.
   study.times = runs.back().times;
@@ -95,7 +101,7 @@ ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& s
     row.stable = runs[i].stable;
     row.forceEvaluations = runs[i].forceEvaluations + runs[i].solverIterations;
     row.cost = static_cast<double>(row.forceEvaluations) * row.masses;
-    row.wallSeconds = runs[i].wallSeconds;
+    row.wallSeconds = walls[i];
     row.series = observableSeries(runs[i], study.observable);
     row.error = row.stable ? relativeError(row.series, finest) : INFINITY;
   }
@@ -125,6 +131,7 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
     ro.duration = o.duration;
     ro.samples = o.samples;
     ro.resolutions = o.resolutions;
+    ro.repeats = 0;  // the advisor counts costs; it does not time them
     ro.threads = o.threads;
     ro.progress = o.progress;
     advice.resolution = resolutionStudy(registry, scene, ro);

@@ -23,6 +23,7 @@ struct ResolutionOptions {
   int samples = 40;
   std::vector<int> resolutions;  // empty: the scene's value x 2^-3 .. x 2
   std::string integrator;        // empty: the scene's
+  int repeats = 3;               // timed runs after the first (the median wall time is reported)
   int threads = 0;
   bool progress = true;
 };
@@ -34,7 +35,7 @@ struct ResolutionRow {
   bool stable = true;
   long forceEvaluations = 0;
   double cost = 0.0;            // force evaluations x masses
-  double wallSeconds = 0.0;
+  double wallSeconds = 0.0;     // median of the timed runs
   double error = 0.0;           // relative, against the finest
   std::vector<double> series;   // the observable at each sample
 };
