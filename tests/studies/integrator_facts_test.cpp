@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ostream>
 #include <string>
 
 #include <springlab/frequency_estimate.hpp>
@@ -45,6 +46,8 @@ struct OrderCase {
   int order;
   double dt;  // s: small enough for the asymptotic regime, large enough to stay above round-off
 };
+
+void PrintTo(const OrderCase& c, std::ostream* os) { *os << c.integrator; }
 
 class ConvergenceOrder : public ::testing::TestWithParam<OrderCase> {};
 
@@ -144,6 +147,8 @@ struct EnergyCase {
   double wdt;
   Energy expected;
 };
+
+void PrintTo(const EnergyCase& c, std::ostream* os) { *os << c.integrator << " at w dt = " << c.wdt; }
 
 class EnergyOver1e5Steps : public ::testing::TestWithParam<EnergyCase> {};
 
