@@ -7,6 +7,8 @@
 
 #include <springlab/recorder.hpp>
 #include <springlab/registry.hpp>
+
+#include "study_commands.hpp"
 #ifdef SPRINGLAB_HAS_VIEWER
 #include <springlab/viewer.hpp>
 #endif
@@ -27,11 +29,14 @@ struct SimOptions {
   std::string out;
   long saveEvery = 1;
   bool noBlowUpCheck = false;
+  std::vector<std::string> sets;  // --set KEY=VALUE
 };
 
 int runSim(const Registry& registry, const SimOptions& o) {
   // Load the scene and apply the command line's overrides.
-  LoadedScene scene = registry.loadScene(o.scene);
+  SceneDocument document = SceneDocument::read(o.scene);
+  for (const std::string& assignment : o.sets) document.set(assignment);
+  LoadedScene scene = registry.loadScene(document);
   Simulation& sim = *scene.sim;
   if (!o.integrator.empty()) sim.setIntegrator(registry.makeIntegrator(o.integrator));
   const double dt = o.dt > 0.0 ? o.dt : scene.settings.dt;
@@ -85,6 +90,10 @@ int main(int argc, char** argv) {
   simCmd->add_option("--out", sim.out, "output file, .json or .csv")->required();
   simCmd->add_option("--save-every", sim.saveEvery, "save every K-th step (default 1)")->check(CLI::PositiveNumber);
   simCmd->add_flag("--no-blowup-check", sim.noBlowUpCheck, "keep stepping when the run blows up");
+  simCmd->add_option("--set", sim.sets, "change a scene key first: KEY=VALUE, e.g. rope.masses=40 (repeatable)");
+
+  app::StudyCommandOptions study;
+  const auto [chartCmd, adviseCmd] = app::addStudyCommands(app, study);
 
   auto* listCmd = app.add_subcommand("list", "list the integrators and labs of this build");
 
@@ -105,6 +114,8 @@ int main(int argc, char** argv) {
 
   try {
     if (*simCmd) return runSim(registry, sim);
+    if (*chartCmd) return app::runChart(registry, study);
+    if (*adviseCmd) return app::runAdvise(registry, study);
     if (*listCmd) {
       std::cout << "integrators:";
       for (const auto& n : registry.integratorNames()) std::cout << ' ' << n;

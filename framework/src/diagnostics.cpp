@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "springlab/frequency_estimate.hpp"
 #include "springlab/simulation.hpp"
 
 namespace springlab {
@@ -54,7 +55,7 @@ void BlowUpCheck::admitUserEnergy(const Simulation& sim) {
   energyScale_ = std::max(before, energyScale_);
 }
 
-void BlowUpCheck::check(const Simulation& sim, double dt) const {
+void BlowUpCheck::check(Simulation& sim, double dt) const {
   // Non-finite state: name the first mass that went bad.
   std::string why;
   for (int i = 0; i < sim.numOfMasses() && why.empty(); ++i) {
@@ -75,9 +76,11 @@ void BlowUpCheck::check(const Simulation& sim, double dt) const {
   }
   if (why.empty()) return;
 
-  // Name the likely cause: dt against the integrator's stability limit.
+  // Name the likely cause: dt against the integrator's stability limit, with w_max from the
+  // linearised scene at its initial state (Lanczos); Gershgorin's bound when that finds nothing.
   const Integrator& integrator = sim.integrator();
-  const double wMax = sim.maxAngularFrequency();
+  double wMax = estimateMaxAngularFrequency(sim, sim.initialState()).maxAngularFrequency;
+  if (!(wMax > 0.0) || !std::isfinite(wMax)) wMax = sim.maxAngularFrequency();
   const double safeDt = predictedStableDt(integrator, wMax);
   std::ostringstream msg;
   msg << "simulation blew up at t = " << sim.state.time << " s (step " << sim.stats.steps << "): " << why

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "springlab/midpoint.hpp"
+#include "springlab/rk4.hpp"
 #include "springlab/symplectic_euler.hpp"
 
 namespace springlab {
@@ -18,8 +20,57 @@ void Registry::addIntegrator(const std::string& name, IntegratorFactory factory)
   integrators_[name] = std::move(factory);
 }
 
-void Registry::addScene(const std::string& lab, SceneFactory factory) {
+void Registry::addScene(const std::string& lab, SceneFactory factory, ResolutionRule resolution) {
   scenes_[lab] = std::move(factory);
+  if (!resolution.key.empty()) resolutions_[lab] = std::move(resolution);
+}
+
+LoadedScene Registry::loadScene(const SceneDocument& document) const {
+  SceneReader reader = SceneReader::fromText(document.json.dump(), document.file);
+  return loadScene(reader);
+}
+
+const ResolutionRule& Registry::resolutionRule(const std::string& lab) const {
+  auto it = resolutions_.find(lab);
+  if (it == resolutions_.end()) {
+    throw std::invalid_argument("the " + lab + " lab registers no resolution key (Registry::addScene's ResolutionRule), so its scenes cannot change resolution");
+  }
+  return it->second;
+}
+
+namespace {
+// The lab's section of a document and the lab's name, or SceneError naming the file.
+std::string labOf(const SceneDocument& document) {
+  const auto it = document.json.find("lab");
+  if (it == document.json.end() || !it->is_string()) throw SceneError(document.file + ": lab: missing or not a string");
+  const std::string lab = it->get<std::string>();
+  if (!document.json.contains(lab) || !document.json[lab].is_object()) {
+    throw SceneError(document.file + ": " + lab + ": the lab's section is missing");
+  }
+  return lab;
+}
+}  // namespace
+
+int Registry::resolution(const SceneDocument& document) const {
+  const std::string lab = labOf(document);
+  const ResolutionRule& rule = resolutionRule(lab);
+  const auto& section = document.json[lab];
+  if (!section.contains(rule.key) || !section[rule.key].is_number_integer()) {
+    throw SceneError(document.file + ": " + lab + "." + rule.key + ": the resolution key must be an integer");
+  }
+  return section[rule.key].get<int>();
+}
+
+SceneDocument Registry::atResolution(const SceneDocument& document, int value) const {
+  const std::string lab = labOf(document);
+  const ResolutionRule& rule = resolutionRule(lab);
+  SceneDocument out = document;
+  if (rule.rescale) {
+    rule.rescale(out.json[lab], value);
+  } else {
+    out.json[lab][rule.key] = value;
+  }
+  return out;
 }
 
 std::unique_ptr<Integrator> Registry::makeIntegrator(const std::string& name) const {
@@ -90,6 +141,8 @@ LoadedScene Registry::loadScene(SceneReader& reader) const {
 
 void registerFramework(Registry& registry) {
   registry.addIntegrator("symplectic_euler", [] { return std::make_unique<SymplecticEuler>(); });
+  registry.addIntegrator("midpoint", [] { return std::make_unique<Midpoint>(); });
+  registry.addIntegrator("rk4", [] { return std::make_unique<RungeKutta4>(); });
 }
 
 }  // namespace springlab

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace springlab {
 
@@ -33,6 +35,23 @@ RopeParameters readRopeParameters(SceneReader& r, const Vec3& gravity, int dimen
     if (p.direction.z() != 0.0) r.fail("direction", "must have z = 0 in a 2D scene");
   }
   return p;
+}
+
+ResolutionRule ropeResolutionRule() {
+  return {"masses", [](nlohmann::json& rope, int masses) {
+    // s: the new segment length over the old; n masses make n - 1 segments.
+    const int old = rope.at("masses").get<int>();
+    if (masses < 2) throw std::invalid_argument("a rope needs at least 2 masses, got " + std::to_string(masses));
+    const double s = static_cast<double>(old - 1) / static_cast<double>(masses - 1);
+    auto scale = [](nlohmann::json& value, double factor) { value = value.get<double>() * factor; };
+    rope["masses"] = masses;
+    scale(rope.at("rest_length"), s);      // the same length
+    scale(rope.at("mass"), s);             // the same mass per metre
+    scale(rope.at("spring_constant"), 1.0 / s);  // k L0: the same stretch under the same load
+    scale(rope.at("spring_friction"), 1.0 / s);  // kd L0: the same material damping
+    scale(rope.at("air_friction"), s);     // the same drag per kilogram
+    for (const char* key : {"repulsion", "friction", "absorption"}) scale(rope.at("ground").at(key), s);
+  }};
 }
 
 RopeSimulation::RopeSimulation(int dim, const RopeParameters& p)
@@ -85,6 +104,13 @@ double RopeSimulation::maxAngularFrequency() const {
   for (const Mass& m : masses) minMass = std::min(minMass, m.m);
   if (masses.empty()) return w;
   return std::sqrt(w * w + ground.repulsion / minMass);
+}
+
+std::vector<Observable> RopeSimulation::observables() const {
+  if (state.pos.empty()) return {};
+  double lowest = state.pos.front().y();
+  for (const Vec3& x : state.pos) lowest = std::min(lowest, x.y());
+  return {{"sag", "m", ropeConnectionPos.y() - lowest}, {"tip_y", "m", state.pos.back().y()}};
 }
 
 void RopeSimulation::onReset() {

@@ -9,7 +9,7 @@ void registerLab(Registry& registry) {
   registry.addScene("rope", [](SceneReader& section, const SceneSettings& settings) {
     const RopeParameters p = readRopeParameters(section, settings.gravity, settings.dimension);
     return std::make_unique<Rope>(settings.dimension, p);
-  });
+  }, ropeResolutionRule());
 }
 
 }  // namespace springlab::rope

@@ -44,7 +44,9 @@ class BlowUpCheck {
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
   // The user put energy in (dragged, pinned): never count that as a blow-up.
   void admitUserEnergy(const Simulation& sim);
-  void check(const Simulation& sim, double dt) const;  // throws BlowUp
+  // Throws BlowUp. Its message predicts the safe dt from estimateMaxAngularFrequency at the
+  // scene's initial state (the blown-up state says nothing about the scene's stiffness).
+  void check(Simulation& sim, double dt) const;
 
   double energyScale() const { return energyScale_; }
 

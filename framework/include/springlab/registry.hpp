@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "springlab/integrator.hpp"
+#include "springlab/scene_document.hpp"
 #include "springlab/scene_reader.hpp"
 #include "springlab/simulation.hpp"
 
@@ -32,6 +33,17 @@ struct LoadedScene {
   std::unique_ptr<Simulation> sim;
 };
 
+// How a scene kind changes its resolution (masses per rope, grid size, mesh subdivision)
+// while the physical object stays the same: the resolution study and the advisor use it.
+// A lab passes one to Registry::addScene. `key` names an integer key of the lab's section;
+// `rescale` rewrites the section for a new value. Without `rescale` only the key is set,
+// which is right when the section gives the object in physical totals (size, total mass,
+// material stiffness) and the lab derives per-mass and per-spring values from them.
+struct ResolutionRule {
+  std::string key;  // e.g. "masses" for "rope.masses"; empty: the scene kind has none
+  std::function<void(nlohmann::json& section, int value)> rescale;  // may be empty
+};
+
 class Registry {
  public:
   using IntegratorFactory = std::function<std::unique_ptr<Integrator>()>;
@@ -40,7 +52,7 @@ class Registry {
       std::function<std::unique_ptr<Simulation>(SceneReader& section, const SceneSettings&)>;
 
   void addIntegrator(const std::string& name, IntegratorFactory factory);
-  void addScene(const std::string& lab, SceneFactory factory);
+  void addScene(const std::string& lab, SceneFactory factory, ResolutionRule resolution = {});
 
   // Throws std::invalid_argument listing the known names when `name` is unknown.
   std::unique_ptr<Integrator> makeIntegrator(const std::string& name) const;
@@ -51,6 +63,15 @@ class Registry {
   // Throws SceneError naming the file and key on any bad input.
   LoadedScene loadScene(const std::string& path) const;
   LoadedScene loadScene(SceneReader& reader) const;
+  // A scene document, edited or not (--set, studies).
+  LoadedScene loadScene(const SceneDocument& document) const;
+
+  // The scene kind's resolution rule; std::invalid_argument when the lab registered none.
+  const ResolutionRule& resolutionRule(const std::string& lab) const;
+  // The document's resolution (the value of its lab's resolution key).
+  int resolution(const SceneDocument& document) const;
+  // The same physical object at another resolution.
+  SceneDocument atResolution(const SceneDocument& document, int value) const;
   // Only the settings every scene has, without building the simulation (the viewer shows
   // them even when the lab's code cannot build the scene yet).
   SceneSettings readSceneSettings(const std::string& path) const;
@@ -60,9 +81,10 @@ class Registry {
 
   std::map<std::string, IntegratorFactory> integrators_;
   std::map<std::string, SceneFactory> scenes_;
+  std::map<std::string, ResolutionRule> resolutions_;
 };
 
-// Registers the framework's own integrators (symplectic Euler).
+// Registers the framework's own integrators (symplectic Euler, midpoint, RK4).
 void registerFramework(Registry& registry);
 
 }  // namespace springlab

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "springlab/registry.hpp"
 #include "springlab/scene_reader.hpp"
 #include "springlab/simulation.hpp"
 
@@ -37,6 +38,11 @@ struct RopeParameters {
 // Read the "rope" section of a scene file (keys and units in README's scene reference).
 RopeParameters readRopeParameters(SceneReader& section, const Vec3& gravity, int dimension);
 
+// The rope's resolution rule (Registry::addScene): "masses" changes the number of masses while
+// the physical rope stays the same: its length, its free mass, its stretch under load (k L0),
+// its material damping (kd L0), and drag and ground contact per kilogram.
+ResolutionRule ropeResolutionRule();
+
 class RopeSimulation : public Simulation {
  public:
   RopeSimulation(int dimension, const RopeParameters& parameters);
@@ -58,6 +64,9 @@ class RopeSimulation : public Simulation {
   // Everywhere the rope can reach: a box of its length around the connection point, cut at
   // the ground below and a little above the connection point.
   Bounds reach() const override;
+  // "sag": how far the lowest mass hangs below the connection point (m);
+  // "tip_y": the height of the free end (m).
+  std::vector<Observable> observables() const override;
 
  protected:
   // Energy stored in the ground's repulsion, 1/2 k depth^2 per mass below the ground.

@@ -70,6 +70,8 @@ class Simulation {
   Integrator& integrator() const { return *integrator_; }
   // Restore the initial state (model edits stay), forget integrator history.
   void reset();
+  // The state reset() returns to (stability estimates use it after a blow-up).
+  const State& initialState() const { return initialState_; }
   // Turn the blow-up check off for studies that want to watch a method fail.
   void setBlowUpCheck(bool enabled) { blowUpCheckEnabled_ = enabled; }
 

@@ -19,6 +19,8 @@
 #include <memory>
 #include <optional>
 
+#include "springlab/frequency_estimate.hpp"
+
 #include "camera.hpp"
 #include "force_colors.hpp"
 #include "panel.hpp"
@@ -130,6 +132,7 @@ class Viewer {
   std::optional<MissingExercise> missing_;
   std::string runErrorHeadline_;
   std::string runError_;  // empty while the run is fine
+  std::optional<double> maxAngularFrequency_;  // rad/s, cached Lanczos estimate for the dt warning
 
   Drag drag_ = Drag::None;
   double cursorX_ = 0.0, cursorY_ = 0.0;
@@ -408,6 +411,7 @@ void Viewer::interact() {
   if (control_.resetRequested) {
     control_.resetRequested = false;
     guarded([&] { sim->reset(); });
+    maxAngularFrequency_.reset();
     if (!runError_.empty()) control_.paused = false;  // R resets and continues after a blow-up
     runError_.clear();
     if (!scene_.missingAtLoad) missing_.reset();  // try the student's code again
@@ -422,6 +426,7 @@ void Viewer::interact() {
   if (control_.parametersEdited) {
     control_.parametersEdited = false;
     guarded([&] { sim->parametersChanged(); });
+    maxAngularFrequency_.reset();
   }
 
   // Held keys drive the fixed end; the velocity is sent only when it changes, so a scene's
@@ -536,7 +541,10 @@ void Viewer::drawGui() {
     try {
       hud.energies = sim->energies();
       hud.observables = sim->observables();
-      stableDt = predictedStableDt(sim->integrator(), sim->maxAngularFrequency());
+      // w_max from the Lanczos estimate (a few dozen force evaluations), cached until the
+      // scene's parameters change or it is reset.
+      if (!maxAngularFrequency_) maxAngularFrequency_ = estimatedMaxAngularFrequency(*sim);
+      stableDt = predictedStableDt(sim->integrator(), *maxAngularFrequency_);
     } catch (const std::exception&) {
       // A missing exercise or a broken state: the HUD leaves the numbers out.
     }

@@ -1,0 +1,59 @@
+#pragma once
+// One study run: a scene document, an integrator and a dt, stepped for a simulated duration
+// with the blow-up check on, sampled at fixed times. Every study (work-precision, stability,
+// resolution, advisor) is made of these.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "springlab/registry.hpp"
+#include "springlab/scene_document.hpp"
+
+namespace springlab::studies {
+
+struct RunSpec {
+  SceneDocument scene;
+  std::string integrator;      // registered name
+  double dt = 0.0;             // s
+  long stepsPerSample = 1;     // samples are taken every stepsPerSample steps (and at t = 0)
+  int samples = 0;             // samples after t = 0; the run lasts samples * stepsPerSample steps
+  double stiffnessScale = 1.0; // every spring's k is multiplied by this (stability maps)
+  bool keepPositions = true;   // store every mass's position at each sample
+};
+
+struct RunResult {
+  bool stable = true;         // false: the blow-up check stopped it
+  std::string failure;        // the blow-up message, when not stable
+  long steps = 0;
+  long forceEvaluations = 0;
+  long solverIterations = 0;
+  int masses = 0;
+  double wallSeconds = 0.0;   // stepping only, not building the scene
+  std::vector<double> times;                   // [samples + 1] s
+  std::vector<std::vector<Vec3>> positions;    // [samples + 1][n] m (keepPositions)
+  std::vector<std::string> observableNames;    // the scene's observables()
+  std::vector<std::vector<double>> observables;  // [samples + 1][observables]
+};
+
+// Build the scene and run it. NotImplemented and SceneError propagate (the caller decides
+// whether a missing exercise skips an integrator or stops the study); a blow-up does not.
+RunResult runScene(const Registry& registry, const RunSpec& spec);
+
+// Largest distance between the same mass in two runs at each common sample (m); runs that
+// stopped early compare only the samples both have. Empty when the runs differ in size.
+std::vector<double> positionErrors(const RunResult& run, const RunResult& reference);
+
+// The values of one observable over a run; std::invalid_argument naming the known ones.
+std::vector<double> observableSeries(const RunResult& run, const std::string& name);
+
+// The largest angular frequency of the scene at its initial state (Lanczos estimate),
+// with every spring's k multiplied by stiffnessScale.
+double sceneMaxAngularFrequency(const Registry& registry, const SceneDocument& scene, double stiffnessScale = 1.0);
+
+// The integrator's stability constant c (dt < c / w_max), by name.
+double stabilityConstant(const Registry& registry, const std::string& integrator);
+
+// Median of a list (the list is copied).
+double median(std::vector<double> values);
+
+}  // namespace springlab::studies

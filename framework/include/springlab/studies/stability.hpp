@@ -1,0 +1,85 @@
+#pragma once
+// Where each method stops being stable: the largest dt that survives a fixed simulated time
+// under the blow-up check, found by bracketing and bisection, against the prediction
+// c / w_max (c: the method's stability constant, w_max: the Lanczos estimate at the start).
+// And a map over stiffness x dt for one integrator: stable and unstable cells, with the
+// predicted boundary c / w_max(stiffness).
+#include <string>
+#include <vector>
+
+#include "springlab/studies/run.hpp"
+
+namespace springlab::studies {
+
+struct StabilityOptions {
+  std::vector<std::string> integrators;  // empty: every registered integrator
+  double duration = 0.0;     // s of simulated time per trial; 0: 300 periods of the stiffest mode
+  double tolerance = 0.005;  // relative width of the final bracket
+  long maxSteps = 4000000;   // a trial needing more steps is not run (the bracket stops there)
+  int threads = 0;
+  bool progress = true;
+};
+
+// One method's largest stable dt. `measured` is the lower end of the final bracket; it is
+// +inf when even the largest trial survived, 0 when not even the smallest did.
+struct CriticalDt {
+  std::string integrator;
+  double stabilityConstant = 0.0;  // c
+  double predicted = 0.0;          // s, c / w_max; 0 when the method has no undamped limit
+  double measured = 0.0;           // s
+  int trials = 0;
+};
+
+struct Stability {
+  std::string scene;
+  double duration = 0.0;
+  double maxAngularFrequency = 0.0;  // rad/s, Lanczos estimate
+  double gershgorinBound = 0.0;      // rad/s, Simulation::maxAngularFrequency
+  std::vector<CriticalDt> methods;
+  std::vector<std::string> skipped;
+};
+
+// The default trial duration of a scene: 300 periods of its stiffest mode.
+double defaultStabilityDuration(double maxAngularFrequency);
+
+// Largest stable dt of one integrator, bisection from a first guess.
+CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                      double duration, double firstGuess, double tolerance = 0.005, long maxSteps = 4000000,
+                      double stiffnessScale = 1.0);
+
+Stability stability(const Registry& registry, const SceneDocument& scene, const StabilityOptions& options);
+
+struct StabilityMapOptions {
+  std::string integrator;           // empty: the scene's
+  std::vector<double> stiffnessScales;  // empty: 10^-2 .. 10^2, 3 per decade
+  int dtCount = 17;                 // dt values, log spaced over 10^-1.5 .. 10^1.5 x the prediction at scale 1
+  double duration = 0.0;            // s; 0: as the stability study at scale 1
+  long maxSteps = 400000;
+  int threads = 0;
+  bool progress = true;
+};
+
+struct StabilityMapCell {
+  double stiffnessScale = 1.0;
+  double dt = 0.0;
+  bool stable = true;
+  bool run = true;  // false: skipped, more than maxSteps
+};
+
+struct StabilityMap {
+  std::string scene;
+  std::string integrator;
+  double stabilityConstant = 0.0;
+  double springConstant = 0.0;  // N/m, the first spring's k at scale 1
+  double duration = 0.0;
+  std::vector<double> scales;
+  std::vector<double> maxAngularFrequency;  // [scales] rad/s
+  std::vector<StabilityMapCell> cells;
+};
+
+StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, const StabilityMapOptions& options);
+
+void writeCsv(const Stability& study, const std::string& path);
+void writeCsv(const StabilityMap& map, const std::string& cellsPath, const std::string& boundaryPath);
+
+}  // namespace springlab::studies

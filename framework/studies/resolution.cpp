@@ -1,0 +1,236 @@
+#include "springlab/studies/resolution.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "springlab/studies/parallel.hpp"
+
+namespace springlab::studies {
+
+namespace {
+
+// The observable to study: the one asked for, or the scene's first; with its unit.
+std::pair<std::string, std::string> pickObservable(const Registry& registry, const SceneDocument& scene,
+                                                   const std::string& asked) {
+  LoadedScene loaded = registry.loadScene(scene);
+  const std::vector<Observable> all = loaded.sim->observables();
+  if (all.empty()) throw std::invalid_argument(scene.file + ": the scene reports no observables to study");
+  if (asked.empty()) return {all.front().name, all.front().unit};
+  std::string known;
+  for (const Observable& o : all) {
+    if (o.name == asked) return {o.name, o.unit};
+    known += (known.empty() ? "" : ", ") + o.name;
+  }
+  throw std::invalid_argument(scene.file + ": no observable \"" + asked + "\"; the scene has: " + known);
+}
+
+// A step that divides the sample interval exactly, no larger than dt.
+long stepsPerSample(double interval, double dt) {
+  return std::max(1L, static_cast<long>(std::ceil(interval / dt * (1.0 - 1e-12))));
+}
+
+// The scene's own dt, integrator and frame length (dt x substeps).
+double sceneDt(const SceneDocument& scene) { return scene.json.at("dt").get<double>(); }
+
+}  // namespace
+
+double relativeError(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size() || b.empty()) return INFINITY;
+  double diff = 0.0, scale = 0.0;
+  for (size_t k = 0; k < a.size(); ++k) {
+    const double d = std::abs(a[k] - b[k]);
+    if (!std::isfinite(d)) return INFINITY;
+    diff = std::max(diff, d);
+    scale = std::max(scale, std::abs(b[k]));
+  }
+  return scale > 0.0 ? diff / scale : diff;
+}
+
+ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& scene, const ResolutionOptions& o) {
+  ResolutionStudy study;
+  study.scene = scene.file;
+  study.tolerance = o.tolerance;
+  std::tie(study.observable, study.unit) = pickObservable(registry, scene, o.observable);
+  study.integrator = o.integrator.empty() ? scene.json.at("integrator").get<std::string>() : o.integrator;
+
+  // Resolutions: given, or the scene's own over 2^-3 .. 2^1.
+  std::set<int> values(o.resolutions.begin(), o.resolutions.end());
+  if (values.empty()) {
+    const int base = registry.resolution(scene);
+    for (int k = -3; k <= 1; ++k) values.insert(std::max(2, static_cast<int>(std::lround(base * std::ldexp(1.0, k)))));
+  }
+
+  // Each resolution keeps the scene's w_max dt (its author's safety margin), rounded down to
+  // divide the sample interval.
+  const double interval = o.duration / o.samples;
+  const double w0 = sceneMaxAngularFrequency(registry, scene);
+  std::vector<RunSpec> specs;
+  for (int r : values) {
+    SceneDocument doc = registry.atResolution(scene, r);
+    const double w = sceneMaxAngularFrequency(registry, doc);
+    const double dt = sceneDt(scene) * (w > w0 && w > 0.0 ? w0 / w : 1.0);
+    const long per = stepsPerSample(interval, dt);
+    RunSpec spec{doc, study.integrator, interval / static_cast<double>(per), per, o.samples};
+    spec.keepPositions = false;
+    specs.push_back(spec);
+    study.rows.push_back({});
+    study.rows.back().resolution = r;
+    study.rows.back().dt = spec.dt;
+  }
+  std::vector<RunResult> runs(specs.size());
+  std::vector<double> walls(specs.size());
+  parallelFor(static_cast<int>(specs.size()), o.threads, [&](int i) {
+    // The first run gives the observable and warms up; the timed runs give the wall time.
+    runs[i] = runScene(registry, specs[i]);
+    std::vector<double> timed;
+    for (int r = 0; r < o.repeats; ++r) timed.push_back(runScene(registry, specs[i]).wallSeconds);
+    walls[i] = timed.empty() ? runs[i].wallSeconds : median(timed);
+  }, o.progress ? "resolution runs" : "");
+
+  // Errors against the finest; the chosen row is the coarsest from which every finer one fits.
+  study.times = runs.back().times;
+  const std::vector<double> finest = observableSeries(runs.back(), study.observable);
+  for (size_t i = 0; i < runs.size(); ++i) {
+    ResolutionRow& row = study.rows[i];
+    row.masses = runs[i].masses;
+    row.stable = runs[i].stable;
+    row.forceEvaluations = runs[i].forceEvaluations + runs[i].solverIterations;
+    row.cost = static_cast<double>(row.forceEvaluations) * row.masses;
+    row.wallSeconds = walls[i];
+    row.series = observableSeries(runs[i], study.observable);
+    row.error = row.stable ? relativeError(row.series, finest) : INFINITY;
+  }
+  study.chosen = static_cast<int>(study.rows.size()) - 1;
+  for (int i = study.chosen - 1; i >= 0 && study.rows[i].error <= o.tolerance; --i) study.chosen = i;
+  return study;
+}
+
+Advice advise(const Registry& registry, const SceneDocument& scene, const AdviseOptions& o) {
+  Advice advice;
+  const double half = 0.5 * o.tolerance;
+
+  // 1. The coarsest resolution within half the tolerance (the scene's own when the lab has
+  //    no resolution rule).
+  SceneDocument model = scene;
+  const std::string lab = scene.json.at("lab").get<std::string>();
+  bool hasRule = true;
+  try {
+    registry.resolutionRule(lab);
+  } catch (const std::invalid_argument&) {
+    hasRule = false;
+  }
+  if (hasRule) {
+    ResolutionOptions ro;
+    ro.observable = o.observable;
+    ro.tolerance = half;
+    ro.duration = o.duration;
+    ro.samples = o.samples;
+    ro.resolutions = o.resolutions;
+    ro.repeats = 0;  // the advisor counts costs; it does not time them
+    ro.threads = o.threads;
+    ro.progress = o.progress;
+    advice.resolution = resolutionStudy(registry, scene, ro);
+    advice.chosenResolution = advice.resolution.rows[advice.resolution.chosen].resolution;
+    model = registry.atResolution(scene, advice.chosenResolution);
+  }
+  const std::string observable = pickObservable(registry, model, o.observable).first;
+
+  // 2. At that resolution: a dt ladder from about RK4's limit down, and an RK4 reference one
+  //    halving below the finest rung (2^levels below RK4's limit: far more accurate than
+  //    any rung it judges).
+  const double interval = o.duration / o.samples;
+  const double w = sceneMaxAngularFrequency(registry, model);
+  const double top = w > 0.0 ? 2.83 / w : interval;
+  int first = 0;
+  while (interval / std::ldexp(1.0, first) > top * (1.0 + 1e-9)) ++first;
+  auto per = [](int level) { return 1L << level; };
+  const int refLevel = first + o.levels;
+  RunSpec refSpec{model, "rk4", interval / static_cast<double>(per(refLevel)), per(refLevel), o.samples};
+  refSpec.keepPositions = false;
+  const RunResult reference = runScene(registry, refSpec);
+  if (!reference.stable) throw std::runtime_error("the RK4 reference run blew up: " + reference.failure);
+  const std::vector<double> refSeries = observableSeries(reference, observable);
+
+  // 3. Each integrator: the largest dt on the ladder that is stable and within half the
+  //    tolerance (integrators in parallel, each walking down its ladder).
+  const std::vector<std::string> names = o.integrators.empty() ? registry.integratorNames() : o.integrators;
+  advice.candidates.resize(names.size());
+  parallelFor(static_cast<int>(names.size()), o.threads, [&](int i) {
+    Candidate& c = advice.candidates[i];
+    c.integrator = names[i];
+    for (int l = first; l < first + o.levels; ++l) {
+      RunSpec spec{model, names[i], interval / static_cast<double>(per(l)), per(l), o.samples};
+      spec.keepPositions = false;
+      RunResult run;
+      try {
+        run = runScene(registry, spec);
+      } catch (const NotImplemented& e) {
+        c.note = e.what();
+        return;
+      }
+      const double error = run.stable ? relativeError(observableSeries(run, observable), refSeries) : INFINITY;
+      if (error <= half) {
+        c.dt = spec.dt;
+        c.error = error;
+        c.evaluationsPerSecond = static_cast<double>(run.forceEvaluations + run.solverIterations) / o.duration;
+        return;
+      }
+    }
+    std::ostringstream note;
+    note << "no dt down to " << interval / static_cast<double>(per(first + o.levels - 1)) << " s met the tolerance";
+    c.note = note.str();
+  }, o.progress ? "advisor: integrators" : "");
+
+  // 4. The cheapest in force evaluations per simulated second (ties: the smaller error).
+  for (int i = 0; i < static_cast<int>(advice.candidates.size()); ++i) {
+    const Candidate& c = advice.candidates[i];
+    if (c.dt <= 0.0) continue;
+    if (advice.best < 0) { advice.best = i; continue; }
+    const Candidate& b = advice.candidates[advice.best];
+    if (c.evaluationsPerSecond < b.evaluationsPerSecond ||
+        (c.evaluationsPerSecond == b.evaluationsPerSecond && c.error < b.error)) {
+      advice.best = i;
+    }
+  }
+
+  // 5. The snippet: integrator, dt, substeps for the scene's frame length, the lab's section.
+  if (advice.best >= 0) {
+    const Candidate& b = advice.candidates[advice.best];
+    const double frame = sceneDt(scene) * scene.json.at("substeps").get<double>();
+    advice.snippet["integrator"] = b.integrator;
+    advice.snippet["dt"] = b.dt;
+    advice.snippet["substeps"] = std::max(1L, std::lround(frame / b.dt));
+    if (hasRule) advice.snippet[lab] = model.json.at(lab);
+  }
+  return advice;
+}
+
+void writeCsv(const ResolutionStudy& study, const std::string& summaryPath, const std::string& seriesPath) {
+  std::ofstream out(summaryPath);
+  if (!out) throw std::runtime_error(summaryPath + ": cannot write the CSV file");
+  out << std::setprecision(10);
+  out << "resolution,masses,dt_s,stable,force_evaluations,cost_mass_evaluations,wall_s,relative_error,chosen\n";
+  for (size_t i = 0; i < study.rows.size(); ++i) {
+    const ResolutionRow& r = study.rows[i];
+    out << r.resolution << ',' << r.masses << ',' << r.dt << ',' << (r.stable ? 1 : 0) << ',' << r.forceEvaluations
+        << ',' << r.cost << ',' << r.wallSeconds << ',' << r.error << ',' << (static_cast<int>(i) == study.chosen ? 1 : 0)
+        << '\n';
+  }
+  std::ofstream series(seriesPath);
+  if (!series) throw std::runtime_error(seriesPath + ": cannot write the CSV file");
+  series << std::setprecision(10);
+  series << "resolution,time_s," << study.observable << "_" << study.unit << "\n";
+  for (const ResolutionRow& r : study.rows) {
+    for (size_t k = 0; k < r.series.size() && k < study.times.size(); ++k) {
+      series << r.resolution << ',' << study.times[k] << ',' << r.series[k] << '\n';
+    }
+  }
+  if (!out || !series) throw std::runtime_error(summaryPath + ": writing the CSV files failed");
+}
+
+}  // namespace springlab::studies

@@ -1,0 +1,106 @@
+#include "springlab/studies/run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "springlab/frequency_estimate.hpp"
+
+namespace springlab::studies {
+
+namespace {
+
+void scaleSprings(Simulation& sim, double factor) {
+  if (factor == 1.0) return;
+  for (Spring& s : sim.springs) s.springConstant *= factor;
+}
+
+void sample(const Simulation& sim, bool keepPositions, RunResult& out) {
+  out.times.push_back(sim.state.time);
+  if (keepPositions) out.positions.push_back(sim.state.pos);
+  std::vector<double> values;
+  for (const Observable& o : sim.observables()) values.push_back(o.value);
+  out.observables.push_back(std::move(values));
+}
+
+}  // namespace
+
+RunResult runScene(const Registry& registry, const RunSpec& spec) {
+  LoadedScene loaded = registry.loadScene(spec.scene);
+  Simulation& sim = *loaded.sim;
+  sim.setIntegrator(registry.makeIntegrator(spec.integrator));
+  scaleSprings(sim, spec.stiffnessScale);
+  sim.setBlowUpCheck(true);
+
+  RunResult out;
+  out.masses = sim.numOfMasses();
+  for (const Observable& o : sim.observables()) out.observableNames.push_back(o.name);
+  sample(sim, spec.keepPositions, out);
+
+  // Step, sampling every stepsPerSample steps; a blow-up ends the run and is recorded.
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    for (int k = 0; k < spec.samples; ++k) {
+      for (long j = 0; j < spec.stepsPerSample; ++j) sim.operate(spec.dt);
+      sample(sim, spec.keepPositions, out);
+    }
+  } catch (const BlowUp& e) {
+    out.stable = false;
+    out.failure = e.what();
+  }
+  out.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.steps = sim.stats.steps;
+  out.forceEvaluations = sim.stats.forceEvaluations;
+  out.solverIterations = sim.stats.solverIterations;
+  return out;
+}
+
+std::vector<double> positionErrors(const RunResult& run, const RunResult& reference) {
+  std::vector<double> errors;
+  const size_t count = std::min(run.positions.size(), reference.positions.size());
+  for (size_t k = 0; k < count; ++k) {
+    const auto& a = run.positions[k];
+    const auto& b = reference.positions[k];
+    if (a.size() != b.size()) return {};
+    double worst = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      const double d = (a[i] - b[i]).norm();
+      worst = std::isfinite(d) ? std::max(worst, d) : INFINITY;
+    }
+    errors.push_back(worst);
+  }
+  return errors;
+}
+
+std::vector<double> observableSeries(const RunResult& run, const std::string& name) {
+  const auto it = std::find(run.observableNames.begin(), run.observableNames.end(), name);
+  if (it == run.observableNames.end()) {
+    std::string known;
+    for (const std::string& n : run.observableNames) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("the scene has no observable \"" + name + "\"; it has: " +
+                                (known.empty() ? "none" : known));
+  }
+  const size_t index = static_cast<size_t>(it - run.observableNames.begin());
+  std::vector<double> series;
+  for (const auto& values : run.observables) series.push_back(values.at(index));
+  return series;
+}
+
+double sceneMaxAngularFrequency(const Registry& registry, const SceneDocument& scene, double stiffnessScale) {
+  LoadedScene loaded = registry.loadScene(scene);
+  scaleSprings(*loaded.sim, stiffnessScale);
+  return estimateMaxAngularFrequency(*loaded.sim, loaded.sim->state).maxAngularFrequency;
+}
+
+double stabilityConstant(const Registry& registry, const std::string& integrator) {
+  return registry.makeIntegrator(integrator)->stabilityConstant();
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace springlab::studies

@@ -1,0 +1,201 @@
+// Physics facts every integrator of the course must show (physics.md section 4), checked by
+// name through the registry: the framework's methods and the labs' reference exercises
+// alike. An integrator a lab adds joins each table with one line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ostream>
+#include <string>
+
+#include <springlab/frequency_estimate.hpp>
+#include <springlab/studies/run.hpp>
+#include <springlab/studies/stability.hpp>
+
+#include "study_registry.hpp"
+
+namespace springlab {
+namespace {
+
+using testing::allLabs;
+using testing::shippedScene;
+
+// ---- a smooth problem: a short undamped chain swinging down under gravity, no contact -------
+SceneDocument swingingChain() {
+  SceneDocument d = shippedScene("rope_2d.json");
+  for (const char* s : {"rope.masses=4", "rope.spring_constant=200", "rope.spring_friction=0", "rope.air_friction=0",
+                        "rope.ground.height=-100", "rope.ground.repulsion=0", "rope.ground.friction=0",
+                        "rope.ground.absorption=0"}) {
+    d.set(s);
+  }
+  return d;
+}
+
+// Largest position error of any mass at t = 0.4 s against RK4 at a tiny step.
+double chainError(const std::string& integrator, double dt) {
+  static const studies::RunResult reference =
+      studies::runScene(allLabs(), {swingingChain(), "rk4", 0.4 / 40000, 40000, 1});
+  const long steps = std::lround(0.4 / dt);
+  const studies::RunResult run = studies::runScene(allLabs(), {swingingChain(), integrator, dt, steps, 1});
+  EXPECT_TRUE(run.stable) << run.failure;
+  return studies::positionErrors(run, reference).back();
+}
+
+struct OrderCase {
+  std::string integrator;
+  int order;
+  double dt;  // s: small enough for the asymptotic regime, large enough to stay above round-off
+};
+
+void PrintTo(const OrderCase& c, std::ostream* os) { *os << c.integrator; }
+
+class ConvergenceOrder : public ::testing::TestWithParam<OrderCase> {};
+
+TEST_P(ConvergenceOrder, HalvingDtDividesTheErrorBy2ToTheOrder) {
+  const OrderCase& c = GetParam();
+  const double measured = std::log2(chainError(c.integrator, c.dt) / chainError(c.integrator, c.dt / 2));
+  EXPECT_NEAR(measured, c.order, 0.15) << c.integrator << " must converge at order " << c.order
+                                       << " on a smooth problem; halving dt from " << c.dt << " s gives order "
+                                       << measured;
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, ConvergenceOrder,
+                         ::testing::Values(OrderCase{"explicit_euler", 1, 1e-4}, OrderCase{"symplectic_euler", 1, 1e-4},
+                                           OrderCase{"position_verlet", 2, 1e-3}, OrderCase{"velocity_verlet", 2, 1e-3},
+                                           OrderCase{"midpoint", 2, 1e-3}, OrderCase{"rk4", 4, 4e-3}),
+                         [](const auto& p) { return p.param.integrator; });
+
+// ---- the single oscillator: one mass on one spring (k = 100 N/m, m = 1 kg, w = 10 rad/s) ----
+// A long rest length keeps the spring linear until the blow-up check fires (with 1 m the
+// mass would swing through the fixed end first, where the force is no longer linear); the
+// ground moves out of the way.
+SceneDocument linearOscillator(double springFriction = 0.0) {
+  SceneDocument d = shippedScene("mass_on_spring.json");
+  d.set("rope.rest_length=100");
+  d.set("rope.ground.height=-1000");
+  d.set("rope.spring_friction=" + std::to_string(springFriction));
+  return d;
+}
+
+class CriticalDtOnTheOscillator : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CriticalDtOnTheOscillator, IsWithin2PercentOfTheory) {
+  const std::string name = GetParam();
+  const double c = studies::stabilityConstant(allLabs(), name);
+  const double theory = c / 10.0;
+  const studies::CriticalDt m =
+      studies::criticalDt(allLabs(), linearOscillator(), name, studies::defaultStabilityDuration(10.0), theory, 0.002);
+  EXPECT_NEAR(m.measured / theory, 1.0, 0.02) << name << ": measured critical dt " << m.measured
+                                              << " s, theory c / w = " << theory << " s";
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, CriticalDtOnTheOscillator,
+                         ::testing::Values("symplectic_euler", "position_verlet", "velocity_verlet", "rk4"));
+
+// Energy of the oscillation about the equilibrium (total energy minus that of the mass at rest
+// at y = -(L0 + m g / k)): exactly the modal energy of the linear system.
+struct OscillatorRun {
+  LoadedScene scene;
+  double equilibriumEnergy;
+  double oscillation() const { return scene.sim->energies().total() - equilibriumEnergy; }
+};
+
+OscillatorRun oscillatorWith(const std::string& integrator, double springFriction = 0.0) {
+  OscillatorRun run{allLabs().loadScene(linearOscillator(springFriction)), 0.0};
+  Simulation& sim = *run.scene.sim;
+  sim.setIntegrator(allLabs().makeIntegrator(integrator));
+  sim.setBlowUpCheck(false);
+  const State start = sim.state;
+  sim.state.pos[1].y() = -(100.0 + 9.81 / 100.0);
+  run.equilibriumEnergy = sim.energies().total();
+  sim.state = start;
+  return run;
+}
+
+TEST(ExplicitEuler, UnstableAtEveryDtWithoutDamping) {
+  // The oscillation's energy grows by exactly 1 + (w dt)^2 per step, however small dt is.
+  for (double y : {1e-3, 1e-2, 1e-1, 1.0}) {
+    OscillatorRun run = oscillatorWith("explicit_euler");
+    const double e0 = run.oscillation();
+    // Enough steps to see the gain, few enough to stay in the spring's linear range.
+    const int steps = static_cast<int>(std::min(100000.0, 5.0 / std::log1p(y * y)));
+    for (int n = 0; n < steps; ++n) run.scene.sim->operate(y / 10.0);
+    const double growth = std::log(run.oscillation() / e0);
+    EXPECT_GT(growth, 0.0) << "explicit Euler must gain energy at w dt = " << y;
+    EXPECT_NEAR(growth / (steps * std::log1p(y * y)), 1.0, 0.01) << "gain per step must be 1 + (w dt)^2 at w dt = " << y;
+  }
+}
+
+TEST(ExplicitEuler, StableBelow2ZetaOverWWithDamping) {
+  // z = kd / (2 sqrt(k m)) = 0.1 with kd = 2 N s/m: stable while w dt < 2 z = 0.2.
+  for (double factor : {0.9, 1.1}) {
+    OscillatorRun run = oscillatorWith("explicit_euler", 2.0);
+    const double e0 = run.oscillation();
+    for (int n = 0; n < 3000; ++n) run.scene.sim->operate(factor * 0.02);
+    if (factor < 1.0) {
+      EXPECT_LT(run.oscillation(), 1e-3 * e0) << "explicit Euler must be stable at 0.9 x 2 z / w";
+    } else {
+      EXPECT_GT(run.oscillation(), 1e3 * e0) << "explicit Euler must be unstable at 1.1 x 2 z / w";
+    }
+  }
+}
+
+// ---- energy over 10^5 steps ------------------------------------------------------------------
+enum class Energy { Bounded, Grows, Decays };
+struct EnergyCase {
+  std::string integrator;
+  double wdt;
+  Energy expected;
+};
+
+void PrintTo(const EnergyCase& c, std::ostream* os) { *os << c.integrator << " at w dt = " << c.wdt; }
+
+class EnergyOver1e5Steps : public ::testing::TestWithParam<EnergyCase> {};
+
+TEST_P(EnergyOver1e5Steps, BehavesAsTheMethodPredicts) {
+  const EnergyCase& c = GetParam();
+  OscillatorRun run = oscillatorWith(c.integrator);
+  const double e0 = run.oscillation();
+  double lo = 1.0, hi = 1.0;
+  for (int n = 0; n < 100000; ++n) {
+    run.scene.sim->operate(c.wdt / 10.0);
+    const double r = run.oscillation() / e0;
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  const double last = run.oscillation() / e0;
+  switch (c.expected) {
+    case Energy::Bounded:
+      EXPECT_GT(lo, 1.0 - c.wdt) << c.integrator << ": energy fell out of its band";
+      EXPECT_LT(hi, 1.0 + c.wdt) << c.integrator << ": energy rose out of its band";
+      break;
+    case Energy::Grows:
+      EXPECT_GT(last, 2.0) << c.integrator << " must gain energy on an undamped oscillator";
+      break;
+    case Energy::Decays:
+      EXPECT_LT(last, 0.5) << c.integrator << " must lose energy on an undamped oscillator";
+      break;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, EnergyOver1e5Steps,
+                         ::testing::Values(EnergyCase{"symplectic_euler", 0.2, Energy::Bounded},
+                                           EnergyCase{"position_verlet", 0.2, Energy::Bounded},
+                                           EnergyCase{"velocity_verlet", 0.2, Energy::Bounded},
+                                           EnergyCase{"explicit_euler", 0.01, Energy::Grows},
+                                           EnergyCase{"midpoint", 0.1, Energy::Grows},
+                                           EnergyCase{"rk4", 0.5, Energy::Decays}),
+                         [](const auto& p) { return p.param.integrator; });
+
+// ---- the 80-mass rope ------------------------------------------------------------------------
+TEST(ClassicRope, SymplecticEulerCriticalDtIsWithin15PercentOf2OverWmax) {
+  const SceneDocument rope = shippedScene("rope.json");
+  const double w = studies::sceneMaxAngularFrequency(allLabs(), rope);
+  EXPECT_NEAR(w, 2.0 * std::sqrt(10000 / 0.05), 0.02 * w) << "an 80-mass chain's w_max is close to 2 sqrt(k/m)";
+  const studies::CriticalDt m =
+      studies::criticalDt(allLabs(), rope, "symplectic_euler", studies::defaultStabilityDuration(w), 2.0 / w, 0.01);
+  EXPECT_NEAR(m.measured / (2.0 / w), 1.0, 0.15) << "measured " << m.measured << " s, predicted 2 / w_max = " << 2.0 / w;
+}
+
+}  // namespace
+}  // namespace springlab
