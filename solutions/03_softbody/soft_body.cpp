@@ -185,6 +185,14 @@ Bounds SoftBody::reach() const {
     b.hi = b.hi.cwiseMax(o.center + half);
   }
   if (const auto floor = groundHeight()) b.lo.y() = std::min(b.lo.y(), *floor);
+  // In a wind, room downwind for the body to travel and above it for the wind's arrow.
+  if (p_.windDrag > 0.0 && p_.wind.norm() > 0.0) {
+    const double size = (b.hi - b.lo).norm();
+    const Vec3 downwind = b.lo + 2.0 * size * p_.wind.normalized();
+    b.lo = b.lo.cwiseMin(downwind);
+    b.hi = b.hi.cwiseMax(b.hi + 2.0 * size * p_.wind.normalized());
+    b.hi.y() += 0.5 * size;
+  }
   if (dimension == 2) b.lo.z() = b.hi.z() = 0.0;
   return b;
 }
