@@ -7,13 +7,6 @@
 namespace springlab::softbody {
 
 SoftBody::SoftBody(int dim, SoftBodyParameters parameters) : Simulation(dim), p_(std::move(parameters)) {
-  // Faces must turn outward for the pressure to push out: turn over a mesh wound inward.
-  auto measure = [&](const SurfaceMesh& m) {
-    return dim == 3 ? enclosedVolume(m.vertices, m.triangles) : enclosedArea(m.vertices, m.segments);
-  };
-  if (measure(p_.mesh) < 0.0) p_.mesh = reversed(p_.mesh);
-  restVolume_ = measure(p_.mesh);
-
   // Equal masses over the vertices; springs along the edges, plus the extra ones asked for.
   const int n = static_cast<int>(p_.mesh.vertices.size());
   masses.assign(static_cast<size_t>(n), Mass{p_.totalMass / n, false});
@@ -24,6 +17,13 @@ SoftBody::SoftBody(int dim, SoftBodyParameters parameters) : Simulation(dim), p_
   if (p_.secondRingSprings) {
     for (const Spring& s : secondRingSprings(p_.mesh, p_.extraSpringConstant, p_.extraSpringFriction)) springs.push_back(s);
   }
+
+  // Faces must turn outward for the pressure to push out: turn over a mesh wound inward.
+  auto measure = [&](const SurfaceMesh& m) {
+    return dim == 3 ? enclosedVolume(m.vertices, m.triangles) : enclosedArea(m.vertices, m.segments);
+  };
+  if (measure(p_.mesh) < 0.0) p_.mesh = reversed(p_.mesh);
+  restVolume_ = measure(p_.mesh);
   triangles = p_.mesh.triangles;
   gravitation = p_.gravitation;
   gravityY_ = p_.gravitation.y();
