@@ -2,7 +2,10 @@
 // Both check the surface they read (checkClosedSurface) before handing it out.
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
 #include <sstream>
 
 #include <tiny_obj_loader.h>
@@ -45,16 +48,35 @@ SurfaceMesh loadObj(const std::string& path) {
   return m;
 }
 
+namespace {
+
+// The number after `key` ("X:", "Faces:") where the key starts a word, or nothing.
+std::optional<double> valueAfter(const std::string& line, const std::string& key, bool integer) {
+  for (size_t at = line.find(key); at != std::string::npos; at = line.find(key, at + 1)) {
+    if (at > 0 && !std::isspace(static_cast<unsigned char>(line[at - 1]))) continue;
+    const char* begin = line.c_str() + at + key.size();
+    char* end = nullptr;
+    const double v = integer ? static_cast<double>(std::strtol(begin, &end, 10)) : std::strtod(begin, &end);
+    if (end == begin || (*end != '\0' && !std::isspace(static_cast<unsigned char>(*end)))) return std::nullopt;
+    return v;
+  }
+  return std::nullopt;
+}
+
+// "Vertex 12: ..." or "Face 3: ...": the number after the word, when the line is one.
+std::optional<long> numberedLine(const std::string& line, const std::string& word) {
+  size_t i = line.find_first_not_of(" \t");
+  if (i == std::string::npos || line.compare(i, word.size(), word) != 0) return std::nullopt;
+  i = line.find_first_not_of(" \t", i + word.size());
+  if (i == std::string::npos || !std::isdigit(static_cast<unsigned char>(line[i]))) return std::nullopt;
+  return std::strtol(line.c_str() + i, nullptr, 10);
+}
+
+}  // namespace
+
 SurfaceMesh loadAsc(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw MeshError(path + ": cannot open the mesh file");
-  const std::string number = R"(([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?))";
-  const std::regex header(R"(^\s*Tri-mesh,\s*Vertices:\s*(\d+)\s+Faces:\s*(\d+)\s*$)");
-  const std::regex vertex(R"(^\s*Vertex\s+(\d+)\s*:\s*X:\s*)" + number + R"(\s+Y:\s*)" + number + R"(\s+Z:\s*)" +
-                          number + R"(\s*$)");
-  const std::regex face(R"(^\s*Face\s+(\d+)\s*:\s*A:\s*(\d+)\s+B:\s*(\d+)\s+C:\s*(\d+)(\s+.*)?$)");
-  const std::regex vertexLike(R"(^\s*Vertex\s+\d)"), faceLike(R"(^\s*Face\s+\d)");
-
   SurfaceMesh m;
   long vertices = -1, faces = -1;
   std::string line;
@@ -66,34 +88,31 @@ SurfaceMesh loadAsc(const std::string& path) {
   while (std::getline(in, line)) {
     ++lineNumber;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::smatch g;
-    if (std::regex_match(line, g, header)) {
+    if (line.find("Tri-mesh,") != std::string::npos) {
       if (vertices >= 0) fail("a second Tri-mesh: one object per file");
-      vertices = std::stol(g[1]);
-      faces = std::stol(g[2]);
-    } else if (std::regex_match(line, g, vertex)) {
+      const auto v = valueAfter(line, "Vertices:", true), f = valueAfter(line, "Faces:", true);
+      if (!v || !f || *v < 0 || *f < 0) fail("cannot read the header (expected \"Tri-mesh, Vertices: n Faces: m\")");
+      vertices = static_cast<long>(*v);
+      faces = static_cast<long>(*f);
+    } else if (const auto i = numberedLine(line, "Vertex")) {
       if (vertices < 0) fail("a vertex before the \"Tri-mesh, Vertices: n Faces: m\" header");
-      if (std::stol(g[1]) != static_cast<long>(m.vertices.size())) {
-        fail("vertex numbered " + g[1].str() + ", expected " + std::to_string(m.vertices.size()));
+      const auto x = valueAfter(line, "X:", false), y = valueAfter(line, "Y:", false), z = valueAfter(line, "Z:", false);
+      if (!x || !y || !z) fail("cannot read this vertex line (expected \"Vertex i: X: x Y: y Z: z\")");
+      if (*i != static_cast<long>(m.vertices.size())) {
+        fail("vertex numbered " + std::to_string(*i) + ", expected " + std::to_string(m.vertices.size()));
       }
-      m.vertices.push_back(Vec3(std::stod(g[2]), std::stod(g[3]), std::stod(g[4])));
-    } else if (std::regex_match(line, g, face)) {
+      m.vertices.push_back(Vec3(*x, *y, *z));
+    } else if (const auto j = numberedLine(line, "Face")) {
       if (vertices < 0) fail("a face before the \"Tri-mesh, Vertices: n Faces: m\" header");
-      if (std::stol(g[1]) != static_cast<long>(m.triangles.size())) {
-        fail("face numbered " + g[1].str() + ", expected " + std::to_string(m.triangles.size()));
+      const auto a = valueAfter(line, "A:", true), b = valueAfter(line, "B:", true), c = valueAfter(line, "C:", true);
+      if (!a || !b || !c) fail("cannot read this face line (expected \"Face i: A: a B: b C: c\")");
+      if (*j != static_cast<long>(m.triangles.size())) {
+        fail("face numbered " + std::to_string(*j) + ", expected " + std::to_string(m.triangles.size()));
       }
-      auto index = [&](int k) {
-        const long v = std::stol(g[k]);
-        return v > 1000000000L ? -1 : static_cast<int>(v);
-      };
-      m.triangles.push_back({index(2), index(3), index(4)});
-    } else if (std::regex_search(line, vertexLike)) {
-      fail("cannot read this vertex line (expected \"Vertex i: X: x Y: y Z: z\")");
-    } else if (std::regex_search(line, faceLike)) {
-      fail("cannot read this face line (expected \"Face i: A: a B: b C: c\")");
+      auto index = [](double v) { return std::abs(v) > 1e9 ? -1 : static_cast<int>(v); };
+      m.triangles.push_back({index(*a), index(*b), index(*c)});
     }
   }
-  lineNumber = 0;
   if (vertices < 0) throw MeshError(path + ": no \"Tri-mesh, Vertices: n Faces: m\" header: not a 3D Studio ASCII mesh");
   if (static_cast<long>(m.vertices.size()) != vertices || static_cast<long>(m.triangles.size()) != faces) {
     throw MeshError(path + ": the header announces " + std::to_string(vertices) + " vertices and " +
