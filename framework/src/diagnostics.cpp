@@ -63,13 +63,15 @@ void BlowUpCheck::check(Simulation& sim, double dt) const {
       why = "mass " + std::to_string(i) + " has a non-finite position or velocity";
     }
   }
-  // Runaway energy: kinetic plus elastic energy far beyond anything the scene can hold.
+  // Runaway energy: kinetic plus potential energy (springs and the lab's own: ground, gas)
+  // far beyond anything the scene can hold. The lab's potentials count because a source
+  // such as a gas pays for the elastic energy it stores with its own (-nRT ln V falls).
   if (why.empty()) {
     const Energies e = sim.energies();
-    const double grown = e.kinetic + e.elastic;
+    const double grown = e.kinetic + e.elastic + e.other;
     if (!(grown <= kRunawayFactor * energyScale_)) {
       std::ostringstream os;
-      os << "kinetic + elastic energy reached " << grown << " J, over " << kRunawayFactor
+      os << "kinetic + elastic + other potential energy reached " << grown << " J, over " << kRunawayFactor
          << " times the scene's energy scale of " << energyScale_ << " J";
       why = os.str();
     }

@@ -111,6 +111,18 @@ SceneReader SceneReader::object(const std::string& key) {
   return SceneReader(root_, &v, file_, path_.empty() ? key : path_ + "." + key);
 }
 
+std::vector<SceneReader> SceneReader::objects(const std::string& key) {
+  const auto& v = require(key);
+  if (!v.is_array()) fail(key, "must be an array [{...}, ...], got " + v.dump());
+  std::vector<SceneReader> out;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string item = key + "[" + std::to_string(i) + "]";
+    if (!v[i].is_object()) fail(item, "must be an object {...}, got " + v[i].dump());
+    out.push_back(SceneReader(root_, &v[i], file_, path_.empty() ? item : path_ + "." + item));
+  }
+  return out;
+}
+
 void SceneReader::rejectUnknownKeys() const {
   for (const auto& item : node_->items()) {
     if (!used_->count(item.key())) fail(item.key(), "unknown key (misspelt, or not a parameter of this scene)");

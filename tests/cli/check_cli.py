@@ -70,6 +70,21 @@ with tempfile.TemporaryDirectory() as tmp:
     expect("skeleton", run(student, "sim", str(scenes / "rope.json"), "--steps", "10", "--out", out), 3,
            "not implemented: exercise 1.7")
 
+# Lab 3: a scene whose mesh file cannot hold a gas names the scene key, the mesh file and the
+# face; the skeleton names its first missing exercise.
+soft = json.loads((scenes / "softbody_pillow_obj.json").read_text())
+with tempfile.TemporaryDirectory() as tmp:
+    tmp = pathlib.Path(tmp)
+    (tmp / "open.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n")
+    soft["softbody"]["mesh"]["file"] = "open.obj"
+    bad_mesh = tmp / "bad_mesh.json"
+    bad_mesh.write_text(json.dumps(soft))
+    out = str(tmp / "out.json")
+    expect("open mesh", run(reference, "sim", str(bad_mesh), "--steps", "10", "--out", out), 2,
+           "softbody.mesh.file", "open.obj", "face 1 (vertices 1 3 2)", "not closed")
+    expect("softbody skeleton", run(student, "sim", str(scenes / "softbody_ball.json"), "--steps", "10", "--out", out),
+           3, "not implemented: exercise 3.2")
+
 for f in failures:
     print("FAIL", f, file=sys.stderr)
 print(f"{len(failures)} failure(s)" if failures else "command line behaves")

@@ -81,5 +81,22 @@ TEST(SceneReader, MissingFileIsNamed) {
   }
 }
 
+TEST(SceneReader, ArraysOfObjectsNameEachElement) {
+  SceneReader r = SceneReader::fromText(R"({"body": {"obstacles": [{"radius": 1}, {"radius": -2}], "none": []}})", "scenes/x.json");
+  SceneReader body = r.object("body");
+  EXPECT_TRUE(body.objects("none").empty());
+  std::vector<SceneReader> items = body.objects("obstacles");
+  ASSERT_EQ(items.size(), 2u);
+  EXPECT_EQ(items[0].positive("radius"), 1.0);
+  try {
+    items[1].positive("radius");
+    FAIL() << "a negative radius was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("scenes/x.json: body.obstacles[1].radius: must be > 0"), std::string::npos) << e.what();
+  }
+  SceneReader notArray = SceneReader::fromText(R"({"obstacles": {"radius": 1}})", "scenes/y.json");
+  EXPECT_THROW(notArray.objects("obstacles"), SceneError);
+}
+
 }  // namespace
 }  // namespace springlab

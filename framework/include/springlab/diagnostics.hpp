@@ -34,7 +34,8 @@ class BlowUp : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Watches a run: non-finite state, or kinetic plus elastic energy grown far beyond the
+// Watches a run: non-finite state, or kinetic plus elastic plus other potential energy
+// (otherPotentialEnergy: ground, gas) grown far beyond the
 // energy the scene could ever hold (its initial energy plus the work gravity can do).
 class BlowUpCheck {
  public:

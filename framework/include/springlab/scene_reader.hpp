@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +35,9 @@ class SceneReader {
   std::string string(const std::string& key);
   Vec3 vec3(const std::string& key);                // [x, y, z], finite
   SceneReader object(const std::string& key);       // nested object
+  // An array of objects ([] allowed); messages name each as "key[i]". Each element rejects
+  // its own unknown keys (rejectUnknownKeys) after it is read.
+  std::vector<SceneReader> objects(const std::string& key);
   bool has(const std::string& key) const;
 
   // Raise SceneError for the first key of this object that no read asked for.

@@ -118,6 +118,9 @@ class Simulation {
   virtual void onReset() {}
   // Remember the current state as the one reset() returns to; call at the end of building.
   void markInitialState();
+  // The user put energy in through the lab's own controls (a dragged collider, a pressure
+  // slider): the blow-up check takes the new energy as part of the scene's scale.
+  void admitUserEnergy() { blowUpCheck_.admitUserEnergy(*this); }
 
  private:
   std::unique_ptr<Integrator> integrator_;

@@ -1,0 +1,18 @@
+#include <algorithm>
+#include <cmath>
+
+#include "softbody.hpp"
+
+namespace springlab::softbody {
+
+double inflatedGas(double target, long step, int inflationSteps) {
+  // TODO exercise 3.5 (pumping the gas in): write this part; see handouts/03_softbody.md, section Exercise 3.5.
+  throw springlab::NotImplemented("3.5", "pumping the gas in", "handouts/03_softbody.md, section Exercise 3.5");
+}
+
+double gasEnergy(double nRT, double volume, double restVolume) {
+  // TODO exercise 3.5 (pumping the gas in): write this part; see handouts/03_softbody.md, section Exercise 3.5.
+  throw springlab::NotImplemented("3.5", "pumping the gas in", "handouts/03_softbody.md, section Exercise 3.5");
+}
+
+}  // namespace springlab::softbody

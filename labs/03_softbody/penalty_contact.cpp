@@ -1,0 +1,12 @@
+#include <algorithm>
+
+#include "softbody.hpp"
+
+namespace springlab::softbody {
+
+Vec3 penaltyContactForce(const Penetration& p, const Vec3& relativeVelocity, const ContactMaterial& c) {
+  // TODO exercise 3.7 (contact by a penalty spring): write this part; see handouts/03_softbody.md, section Exercise 3.7.
+  throw springlab::NotImplemented("3.7", "contact by a penalty spring", "handouts/03_softbody.md, section Exercise 3.7");
+}
+
+}  // namespace springlab::softbody

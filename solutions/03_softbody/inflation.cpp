@@ -1,0 +1,25 @@
+#include <algorithm>
+#include <cmath>
+
+#include "softbody.hpp"
+
+namespace springlab::softbody {
+
+double inflatedGas(double target, long step, int inflationSteps) {
+  // BEGIN EXERCISE 3.5
+  // A steady pump: equal parts per step until the target is in.
+  if (inflationSteps <= 0) return target;
+  const double fraction = std::clamp(static_cast<double>(step) / inflationSteps, 0.0, 1.0);
+  return fraction * target;
+  // END EXERCISE 3.5
+}
+
+double gasEnergy(double nRT, double volume, double restVolume) {
+  // BEGIN EXERCISE 3.5
+  // The work the gas can still do as it expands from V to V0 at constant temperature.
+  if (volume <= 0.0 || restVolume <= 0.0) return 0.0;
+  return -nRT * std::log(volume / restVolume);
+  // END EXERCISE 3.5
+}
+
+}  // namespace springlab::softbody

@@ -1,0 +1,140 @@
+// Exercises 3.1 and 3.2: the springs of the body, their forces and where they come from.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "seeded.hpp"
+#include "softbody.hpp"
+#include "softbody_fixtures.hpp"
+
+namespace springlab::softbody {
+namespace {
+
+using springlab::testing::Seeded;
+
+std::vector<Vec3> zeros(size_t n) { return std::vector<Vec3>(n, Vec3::Zero()); }
+
+// ---- 3.1 ---------------------------------------------------------------------------------
+
+class SpringForces : public Seeded {};
+
+TEST_F(SpringForces, AreOppositeOnTheTwoEnds) {
+  for (int t = 0; t < 100; ++t) {
+    const std::vector<Vec3> pos = {vec3(-1, 1), vec3(-1, 1)}, vel = {vec3(-2, 2), vec3(-2, 2)};
+    const std::vector<Spring> springs = {{0, 1, uniform(1, 1000), uniform(0, 2), uniform(0, 5), kStructural}};
+    std::vector<Vec3> f = zeros(2);
+    addSpringForces(pos, vel, springs, f);
+    ASSERT_LT((f[0] + f[1]).norm(), 1e-9 * (1.0 + f[0].norm()))
+        << "the spring pushes its two ends with forces that are not equal and opposite " << seedText();
+    ASSERT_GT(f[0].norm(), 0.0) << "a stretched or moving spring exerts no force at all " << seedText();
+  }
+}
+
+TEST_F(SpringForces, FollowHookesLawAndDampAlongTheSpring) {
+  // Mass 1 at distance l along x from mass 2: F1 = -k (l - L0) along x, damping only along x.
+  const double k = uniform(10, 1000), L0 = uniform(0.5, 1.5), l = uniform(0.2, 2.0), kd = uniform(0.1, 3);
+  const std::vector<Vec3> pos = {Vec3(l, 0, 0), Vec3::Zero()};
+  std::vector<Vec3> f = zeros(2);
+  addSpringForces(pos, zeros(2), {{0, 1, k, L0, 0.0, kStructural}}, f);
+  EXPECT_NEAR(f[0].x(), -k * (l - L0), 1e-9 * k) << "Hooke's law: F1 = -k (l - L0) e " << seedText();
+  EXPECT_NEAR(f[0].y(), 0.0, 1e-12) << "a spring pushes only along its own direction " << seedText();
+
+  // Relative velocity (a, b, 0): only its part along the spring is damped.
+  const double a = uniform(-2, 2), b = uniform(-2, 2);
+  f = zeros(2);
+  addSpringForces(pos, {Vec3(a, b, 0), Vec3::Zero()}, {{0, 1, k, l, kd, kStructural}}, f);
+  EXPECT_NEAR(f[0].x(), -kd * a, 1e-9) << "damping must be -kd ((v1 - v2) . e) e " << seedText();
+  EXPECT_NEAR(f[0].y(), 0.0, 1e-12) << "sideways relative motion must not be damped by the spring " << seedText();
+}
+
+TEST_F(SpringForces, ZeroLengthSpringExertsNoForce) {
+  const Vec3 x = vec3(-1, 1);
+  std::vector<Vec3> f = zeros(2);
+  addSpringForces({x, x}, {vec3(-1, 1), vec3(-1, 1)}, {{0, 1, 100.0, 0.5, 1.0, kStructural}}, f);
+  EXPECT_TRUE(f[0].allFinite() && f[1].allFinite()) << "a spring of zero length gave a NaN force";
+  EXPECT_EQ(f[0].norm(), 0.0) << "a spring of zero length has no direction and must exert no force";
+}
+
+// ---- 3.2 ---------------------------------------------------------------------------------
+
+std::set<std::pair<int, int>> pairsOf(const std::vector<Spring>& springs) {
+  std::set<std::pair<int, int>> out;
+  for (const Spring& s : springs) out.insert(std::minmax(s.mass1, s.mass2));
+  return out;
+}
+
+TEST(MeshSprings, OneSpringPerEdgeOfAClosedSurface) {
+  // A closed triangle surface has E = 3 F / 2 edges; every edge once, none twice.
+  for (const SurfaceMesh& m : {boxMesh(Vec3(1, 2, 3), 1), icosphere(1.0, 2), uvSphere(1.0, 5, 7)}) {
+    const std::vector<Spring> springs = edgeSprings(m, 100.0, 1.0);
+    EXPECT_EQ(springs.size(), 3 * m.triangles.size() / 2)
+        << "a closed surface of " << m.triangles.size() << " triangles has " << 3 * m.triangles.size() / 2
+        << " edges; each edge needs exactly one spring";
+    EXPECT_EQ(pairsOf(springs).size(), springs.size()) << "two springs join the same pair of masses";
+    for (const Spring& s : springs) {
+      EXPECT_EQ(s.kind, kStructural) << "edge springs are structural";
+      EXPECT_EQ(s.springConstant, 100.0);
+      EXPECT_EQ(s.frictionConstant, 1.0);
+    }
+  }
+}
+
+TEST(MeshSprings, RestAtTheMeshShape) {
+  const SurfaceMesh m = uvSphere(0.7, 4, 6);
+  for (const Spring& s : edgeSprings(m, 50.0, 0.0)) {
+    EXPECT_NEAR(s.springLength, (m.vertices[s.mass1] - m.vertices[s.mass2]).norm(), 1e-12)
+        << "a spring's rest length must be its edge's length, so the mesh starts at rest";
+  }
+  for (const Spring& s : oppositeSprings(m, 50.0, 0.0)) {
+    EXPECT_NEAR(s.springLength, (m.vertices[s.mass1] - m.vertices[s.mass2]).norm(), 1e-12)
+        << "an opposite spring must rest at the mesh's shape too";
+  }
+}
+
+TEST(MeshSprings, RingHasOneSpringPerSegment) {
+  const SurfaceMesh ring = ringMesh(17, 30.0);
+  const std::vector<Spring> springs = edgeSprings(ring, 400.0, 15.0);
+  ASSERT_EQ(springs.size(), 17u) << "a ring of 17 points has 17 segments, each a spring";
+  for (const Spring& s : springs) {
+    EXPECT_EQ((s.mass2 - s.mass1 + 17) % 17 == 1 || (s.mass1 - s.mass2 + 17) % 17 == 1, true)
+        << "a ring spring must join neighbours along the loop";
+    EXPECT_NEAR(s.springLength, 2 * 30.0 * std::sin(std::numbers::pi / 17), 1e-9) << "wrong rest length";
+  }
+}
+
+TEST(MeshSprings, OppositeSpringsJoinAntipodesOfASphere) {
+  // On an icosphere every vertex has an exact antipode: one spring per antipodal pair.
+  const SurfaceMesh m = icosphere(1.0, 1);
+  const std::vector<Spring> springs = oppositeSprings(m, 10.0, 0.5);
+  EXPECT_EQ(springs.size(), m.vertices.size() / 2) << "each antipodal pair needs exactly one spring";
+  for (const Spring& s : springs) {
+    EXPECT_NEAR(s.springLength, 2.0, 1e-9) << "an opposite spring must cross the whole sphere";
+    EXPECT_EQ(s.kind, kExtra) << "opposite springs are of kind kExtra";
+  }
+}
+
+TEST(MeshSprings, SecondRingCrossesEveryEdgeOnce) {
+  // Across each edge of an icosphere lies a different pair of corners: E springs, none an edge.
+  const SurfaceMesh m = icosphere(1.0, 1);
+  const auto edges = pairsOf(edgeSprings(m, 1.0, 0.0));
+  const std::vector<Spring> cross = secondRingSprings(m, 5.0, 0.1);
+  EXPECT_EQ(cross.size(), edges.size()) << "one spring across each of the " << edges.size() << " edges";
+  EXPECT_EQ(pairsOf(cross).size(), cross.size()) << "two second-ring springs join the same masses";
+  for (const Spring& s : cross) {
+    EXPECT_FALSE(edges.count(std::minmax(s.mass1, s.mass2))) << "a second-ring spring must not lie on an edge";
+    EXPECT_EQ(s.kind, kBend) << "second-ring springs are of kind kBend";
+  }
+  // In 2D: i to i + 2 around the loop.
+  const std::vector<Spring> ring = secondRingSprings(ringMesh(9, 1.0), 5.0, 0.1);
+  ASSERT_EQ(ring.size(), 9u) << "a loop of 9 points has 9 skip-one pairs";
+  for (const Spring& s : ring) {
+    EXPECT_TRUE((s.mass2 - s.mass1 + 9) % 9 == 2 || (s.mass1 - s.mass2 + 9) % 9 == 2)
+        << "a 2D second-ring spring must skip exactly one point";
+  }
+}
+
+}  // namespace
+}  // namespace springlab::softbody

@@ -1,0 +1,63 @@
+#pragma once
+// Small soft bodies for tests, built in code so each test states the physics it sets up.
+#include <cmath>
+#include <random>
+
+#include <springlab/mesh.hpp>
+#include <springlab/registry.hpp>
+
+#include "softbody.hpp"
+
+namespace springlab::testing {
+
+// A body of the given rest shape with no gravity, air, wind, gas or obstacles unless the
+// test asks for them.
+inline softbody::SoftBodyParameters quietBody(SurfaceMesh mesh, double totalMass, double k, double kd) {
+  softbody::SoftBodyParameters p;
+  p.mesh = std::move(mesh);
+  p.totalMass = totalMass;
+  p.springConstant = k;
+  p.springFriction = kd;
+  p.gas = 0.0;
+  p.inflationSteps = 0;
+  p.contact = {1000.0, 5.0, 0.0, 0.0};
+  return p;
+}
+
+// A horizontal floor y = height facing up.
+inline softbody::Obstacle floorAt(double height) {
+  softbody::Obstacle o;
+  o.type = ShapeType::Plane;
+  o.center = Vec3(0.0, height, 0.0);
+  o.axis = Vec3::UnitY();
+  return o;
+}
+
+// An icosphere with every vertex moved radially by up to `jitter` of the radius: a closed,
+// outward-wound surface that is no longer symmetric.
+template <class Rng>
+SurfaceMesh lumpySphere(int subdivisions, double radius, double jitter, const Vec3& center, Rng& rng) {
+  SurfaceMesh m = icosphere(radius, subdivisions);
+  std::uniform_real_distribution<double> u(1.0 - jitter, 1.0 + jitter);
+  for (Vec3& v : m.vertices) v = center + v * u(rng);
+  return m;
+}
+
+// Random velocities for every vertex of a mesh.
+template <class Rng>
+std::vector<Vec3> randomVelocities(size_t n, double speed, Rng& rng) {
+  std::uniform_real_distribution<double> u(-speed, speed);
+  std::vector<Vec3> v(n);
+  for (Vec3& x : v) x = Vec3(u(rng), u(rng), u(rng));
+  return v;
+}
+
+// A registry with the framework's integrators and this lab's scene kind.
+inline Registry softbodyRegistry() {
+  Registry r;
+  registerFramework(r);
+  softbody::registerLab(r);
+  return r;
+}
+
+}  // namespace springlab::testing
