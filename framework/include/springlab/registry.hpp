@@ -40,7 +40,7 @@ struct LoadedScene {
 // which is right when the section gives the object in physical totals (size, total mass,
 // material stiffness) and the lab derives per-mass and per-spring values from them.
 struct ResolutionRule {
-  std::string key;  // e.g. "masses" for "rope.masses"; empty: the scene kind has none
+  std::string key;  // in the lab's section, dots for nested keys: "masses", "mesh.subdivisions"; empty: none
   std::function<void(nlohmann::json& section, int value)> rescale;  // may be empty
 };
 
