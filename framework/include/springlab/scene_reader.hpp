@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +35,9 @@ class SceneReader {
   std::string string(const std::string& key);
   Vec3 vec3(const std::string& key);                // [x, y, z], finite
   SceneReader object(const std::string& key);       // nested object
+  std::vector<std::string> strings(const std::string& key);  // array of strings, may be empty
+  // Array of objects, may be empty; each reads like object() and names itself "key[i]".
+  std::vector<SceneReader> objects(const std::string& key);
   bool has(const std::string& key) const;
 
   // Raise SceneError for the first key of this object that no read asked for.
