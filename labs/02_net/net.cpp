@@ -150,11 +150,22 @@ void Net::moveSphere(int sphere, const Vec3& center) {
 
 // ---- what the viewer shows ---------------------------------------------------------------
 
-std::optional<double> Net::groundHeight() const {
-  // A plane facing straight up is the ground the viewer draws.
-  for (const PlaneCollider& plane : settings.planes) {
-    if (plane.normal.y() > 1.0 - 1e-12) return plane.point.y();
+namespace {
+// Colliders are drawn this far (m) behind their surface, so cloth resting on them shows.
+constexpr double kDrawInset = 0.004;
+
+// The first plane facing straight up: the ground.
+const PlaneCollider* groundPlane(const std::vector<PlaneCollider>& planes) {
+  for (const PlaneCollider& plane : planes) {
+    if (plane.normal.y() > 1.0 - 1e-12) return &plane;
   }
+  return nullptr;
+}
+}  // namespace
+
+std::optional<double> Net::groundHeight() const {
+  // The viewer draws the ground plane, a little below it (see kDrawInset).
+  if (const PlaneCollider* ground = groundPlane(settings.planes)) return ground->point.y() - kDrawInset;
   return std::nullopt;
 }
 
@@ -164,20 +175,23 @@ std::vector<Shape> Net::shapes() const {
   for (const SphereCollider& s : spheres_) {
     out.push_back(Shape{ShapeType::Sphere, s.center, Vec3::UnitY(), s.radius, s.movable});
   }
-  const std::optional<double> ground = groundHeight();
+  const PlaneCollider* ground = groundPlane(settings.planes);
   for (const PlaneCollider& plane : settings.planes) {
-    if (ground && plane.normal.y() > 1.0 - 1e-12 && plane.point.y() == *ground) continue;  // drawn as the ground
-    out.push_back(Shape{ShapeType::Plane, plane.point, plane.normal, 0.0, false});
+    if (&plane == ground) continue;  // drawn by the viewer as the ground
+    out.push_back(Shape{ShapeType::Plane, plane.point - kDrawInset * plane.normal, plane.normal, 0.0, false});
   }
-  // The wind: an arrow beside the net, as long as the wind is strong (0.05 m per unit).
-  if (settings.wind.strength > 0.0) {
-    const Bounds b = Simulation::reach();
-    const double size = std::max((b.hi - b.lo).norm(), 0.5);
-    const Vec3 length = std::min(0.05 * settings.wind.strength, 0.6) * size * settings.wind.direction;
-    const Vec3 tail = 0.5 * (b.lo + b.hi) - 0.5 * length + Vec3(0.0, 0.6 * (b.hi.y() - b.lo.y()) + 0.1 * size, 0.0);
-    out.push_back(Shape{ShapeType::Arrow, tail, length, 0.0, false});
-  }
+  if (const std::optional<Shape> arrow = windArrow(Simulation::reach())) out.push_back(*arrow);
   return out;
+}
+
+std::optional<Shape> Net::windArrow(const Bounds& b) const {
+  // Above the cloth's box, centred, as long as the wind is strong (up to 60 % of the box).
+  if (settings.wind.strength <= 0.0) return std::nullopt;
+  const double size = std::max((b.hi - b.lo).norm(), 0.5);
+  const double scale = settings.wind.model == WindModel::Relative ? 0.05 : 0.03;  // per m/s, per N/m^2
+  const Vec3 length = std::min(scale * settings.wind.strength, 0.6) * size * settings.wind.direction;
+  const Vec3 middle = 0.5 * (b.lo + b.hi) + Vec3(0.0, 0.5 * (b.hi.y() - b.lo.y()) + 0.2 * size, 0.0);
+  return Shape{ShapeType::Arrow, middle - 0.5 * length, length, 0.0, false};
 }
 
 void Net::moveShape(int index, const Vec3& center) {
@@ -197,6 +211,13 @@ Bounds Net::reach() const {
   for (const PlaneCollider& plane : settings.planes) {
     b.lo = b.lo.cwiseMin(plane.point);
     b.hi = b.hi.cwiseMax(plane.point);
+  }
+  // And the wind's arrow, so the camera shows it.
+  if (const std::optional<Shape> arrow = windArrow(Simulation::reach())) {
+    for (const Vec3& end : {arrow->center, Vec3(arrow->center + arrow->axis)}) {
+      b.lo = b.lo.cwiseMin(end);
+      b.hi = b.hi.cwiseMax(end);
+    }
   }
   return b;
 }

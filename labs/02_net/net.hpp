@@ -264,6 +264,8 @@ class Net final : public Simulation {
 
  private:
   void applyWindPanel();
+  // The wind's arrow above a box around the cloth, when there is wind.
+  std::optional<Shape> windArrow(const Bounds& box) const;
 
   int columns_ = 0;
   int rows_ = 0;
