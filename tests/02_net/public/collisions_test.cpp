@@ -91,6 +91,21 @@ TEST_F(ContactVelocity, MovingColliderCarriesTheMass) {
   EXPECT_NEAR((after - after.dot(n) * n).norm(), 0.0, 1e-12) << "and, without friction, no tangential velocity";
   // Moving with the collider, nothing changes.
   EXPECT_LT((contactVelocity(vc, vc, n, 1.0, 0.3) - vc).norm(), 1e-12) << "no relative motion, no change";
+
+  // In a net: a sphere dragged up (as the viewer's Ctrl + drag does) lifts the cloth at its speed.
+  NetParameters p = springlab::testing::quietNet(9, 1.0, 1.0);
+  p.origin = Vec3(-0.5, 0.0, -0.5);
+  p.spheres = {SphereCollider{Vec3(0, -0.3, 0), 0.29, true, Vec3::Zero()}};
+  Net net(3, p);
+  const double speed = uniform(0.5, 2.0), dt = 0.002;
+  for (int step = 0; step < 100; ++step) {
+    net.moveShape(0, net.spheres()[0].center + Vec3(0, speed * dt, 0));
+    net.operate(dt);
+  }
+  const int middle = 4 * 9 + 4;
+  EXPECT_NEAR(net.state.vel[middle].y(), speed, 0.05 * speed)
+      << "the mass on top of a sphere moving up at " << speed << " m/s must move up with it " << seedText();
+  EXPECT_GE((net.state.pos[middle] - net.spheres()[0].center).norm(), 0.29 * (1 - 1e-12)) << "and stay outside it";
 }
 
 TEST_F(ClothOnSphere, NoMassEverInsideTheColliders) {
