@@ -66,7 +66,8 @@ int runSim(const Registry& registry, const SimOptions& o) {
   const Energies e = sim.energies();
   std::cout << "sim: " << scene.settings.file << " with " << sim.integrator().name() << ", " << o.steps
             << " steps of dt = " << dt << " s (t = " << sim.state.time << " s), " << sim.stats.forceEvaluations
-            << " force evaluations, " << seconds << " s wall, " << (seconds > 0 ? static_cast<double>(o.steps) / seconds : 0.0)
+            << " force evaluations, " << sim.stats.solverIterations << " solver iterations, "
+            << seconds << " s wall, " << (seconds > 0 ? static_cast<double>(o.steps) / seconds : 0.0)
             << " steps/s; total energy " << e.total() << " J; wrote " << o.out << "\n";
   return 0;
 }

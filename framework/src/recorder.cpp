@@ -48,6 +48,9 @@ void Recorder::record(const Simulation& sim) {
                        {"elastic", e.elastic}, {"other", e.other}, {"total", e.total()}};
     frame["momentum"] = toJson(p);
     frame["force_evaluations"] = sim.stats.forceEvaluations;
+    frame["solver_iterations"] = sim.stats.solverIterations;
+    auto& observed = frame["observables"] = nlohmann::json::object();
+    for (const Observable& o : sim.observables()) observed[o.name] = o.value;
     auto& pos = frame["pos"] = nlohmann::json::array();
     auto& vel = frame["vel"] = nlohmann::json::array();
     for (int i = 0; i < sim.numOfMasses(); ++i) {

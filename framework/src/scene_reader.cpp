@@ -111,14 +111,25 @@ SceneReader SceneReader::object(const std::string& key) {
   return SceneReader(root_, &v, file_, path_.empty() ? key : path_ + "." + key);
 }
 
+std::vector<std::string> SceneReader::strings(const std::string& key) {
+  const auto& v = require(key);
+  if (!v.is_array()) fail(key, "must be an array of strings, got " + v.dump());
+  std::vector<std::string> out;
+  for (const auto& item : v) {
+    if (!item.is_string()) fail(key, "must be an array of strings, got " + v.dump());
+    out.push_back(item.get<std::string>());
+  }
+  return out;
+}
+
 std::vector<SceneReader> SceneReader::objects(const std::string& key) {
   const auto& v = require(key);
-  if (!v.is_array()) fail(key, "must be an array [{...}, ...], got " + v.dump());
+  if (!v.is_array()) fail(key, "must be an array of objects [{...}, ...], got " + v.dump());
   std::vector<SceneReader> out;
-  for (size_t i = 0; i < v.size(); ++i) {
-    const std::string item = key + "[" + std::to_string(i) + "]";
-    if (!v[i].is_object()) fail(item, "must be an object {...}, got " + v[i].dump());
-    out.push_back(SceneReader(root_, &v[i], file_, path_.empty() ? item : path_ + "." + item));
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::string name = key + "[" + std::to_string(i) + "]";
+    if (!v[i].is_object()) fail(name, "must be an object {...}, got " + v[i].dump());
+    out.push_back(SceneReader(root_, &v[i], file_, path_.empty() ? name : path_ + "." + name));
   }
   return out;
 }

@@ -55,6 +55,15 @@ double Simulation::inverseMass(int i) const {
   return masses[i].inverseMass();
 }
 
+void Simulation::forceJacobian(const State& s, ForceJacobian& J, const std::string& who) {
+  J.clear();
+  if (!addForceJacobian(s, J)) {
+    throw std::invalid_argument(who + " needs the force Jacobians dF/dx and dF/dv, which the \"" + kind() +
+                                "\" scene does not provide (Simulation::addForceJacobian); choose an explicit "
+                                "integrator such as symplectic_euler");
+  }
+}
+
 void Simulation::setIntegrator(std::unique_ptr<Integrator> integrator) {
   if (!integrator) throw std::invalid_argument("Simulation::setIntegrator: null integrator");
   integrator_ = std::move(integrator);

@@ -102,6 +102,22 @@ TEST(Simulation, PlanarSystemStaysExactlyPlanar) {
   for (const Vec3& x : sim.state.pos) EXPECT_EQ(x.z(), 0.0);
 }
 
+TEST(Simulation, ForceJacobianOfASceneWithoutOneNamesSceneAndIntegrator) {
+  // A scene that does not linearise its forces: implicit integrators get a clear error.
+  AnchoredOscillators sim(2, 1.0, 3.0);
+  ForceJacobian J;
+  J.pairs.push_back({0, 1, Mat3::Identity(), Mat3::Identity()});
+  try {
+    sim.forceJacobian(sim.state, J, "implicit_euler");
+    FAIL() << "forceJacobian must throw for a scene without addForceJacobian";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("implicit_euler"), std::string::npos) << what;
+    EXPECT_NE(what.find("anchored oscillators"), std::string::npos) << what;
+  }
+  EXPECT_TRUE(J.pairs.empty()) << "forceJacobian starts from an empty J";
+}
+
 TEST(Simulation, RejectsDimensionOtherThan2Or3) {
   EXPECT_THROW(AnchoredOscillators(1, 1.0, 1.0, 0.0, 4), std::invalid_argument);
 }

@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Check a viewer snapshot: it must exist, be a PNG, and not be blank.
 
-Usage: check_snapshot.py PNG [--expect-red] [--expect-rope]
+Usage: check_snapshot.py PNG [--expect-red] [--expect-rope] [--expect-drawn]
 
 Blank means fewer than 1 % of the pixels differ from the most common colour (a window that
 drew nothing, or only its background). --expect-red also requires the red panel of a missing
 exercise: at least 2 % of the pixels strongly red (r > 150, g < 60, b < 60). --expect-rope
 requires the masses and springs, drawn in force colours from green to red: at least 300
 saturated green-to-red pixels (max(r, g) > 140, b < 90, |r - g| > 60) and no red panel.
+--expect-drawn requires the scene itself instead of a missing-exercise panel (shaded cloth is
+not in saturated force colours): no red panel.
 Only the standard library: zlib for the data, struct for the chunks, PNG filters by hand.
 """
 import struct
@@ -68,6 +70,7 @@ def main():
         print(__doc__)
         return 1
     path, expect_red, expect_rope = sys.argv[1], "--expect-red" in sys.argv[2:], "--expect-rope" in sys.argv[2:]
+    expect_drawn = "--expect-drawn" in sys.argv[2:]
     try:
         width, height, bpp, rows = read_png(path)
     except (OSError, ValueError, zlib.error) as e:
@@ -99,6 +102,9 @@ def main():
         ok = False
     if expect_rope and (rope < 300 or red >= 0.02 * total):
         print("FAIL: no rope in force colours, or a missing-exercise panel, in the snapshot")
+        ok = False
+    if expect_drawn and red >= 0.02 * total:
+        print("FAIL: a missing-exercise panel instead of the scene in the snapshot")
         ok = False
     return 0 if ok else 1
 

@@ -35,8 +35,8 @@ class SceneReader {
   std::string string(const std::string& key);
   Vec3 vec3(const std::string& key);                // [x, y, z], finite
   SceneReader object(const std::string& key);       // nested object
-  // An array of objects ([] allowed); messages name each as "key[i]". Each element rejects
-  // its own unknown keys (rejectUnknownKeys) after it is read.
+  std::vector<std::string> strings(const std::string& key);  // array of strings, may be empty
+  // Array of objects, may be empty; each reads like object() and names itself "key[i]".
   std::vector<SceneReader> objects(const std::string& key);
   bool has(const std::string& key) const;
 

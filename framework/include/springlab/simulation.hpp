@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "springlab/diagnostics.hpp"
+#include "springlab/force_jacobian.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/mass.hpp"
 #include "springlab/not_implemented.hpp"
@@ -64,6 +65,13 @@ class Simulation {
   void evaluateForces(const State& s, std::vector<Vec3>& f);
   // 1/m, or 0 for a mass moved only by the scene (pinned or grabbed by the user).
   double inverseMass(int i) const;
+  // Add the force Jacobians dF/dx and dF/dv at state s into J (implicit integrators call it
+  // after J.clear()). Returns false when the scene cannot linearise its forces (the default);
+  // forceJacobian() then throws, naming the scene.
+  virtual bool addForceJacobian(const State& s, ForceJacobian& J) { (void)s; (void)J; return false; }
+  // J = the force Jacobians at s; throws std::invalid_argument naming `who` (an integrator)
+  // when the scene does not provide them.
+  void forceJacobian(const State& s, ForceJacobian& J, const std::string& who);
 
   // ---- integrator and run control ----------------------------------------------------
   void setIntegrator(std::unique_ptr<Integrator> integrator);

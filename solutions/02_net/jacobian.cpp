@@ -1,0 +1,26 @@
+#include <algorithm>
+
+#include "net.hpp"
+
+namespace springlab::net {
+
+SpringJacobian springJacobian(const Vec3& x1, const Vec3& x2, double springConstant, double springLength,
+                              double frictionConstant) {
+  // BEGIN EXERCISE 2.7
+  SpringJacobian J;
+  const Vec3 x12 = x1 - x2;
+  const double l = x12.norm();
+  if (l == 0.0) return J;
+  const Vec3 e = x12 / l;
+  const Mat3 along = e * e.transpose();
+
+  // Stiffness along the spring, plus the tension's pull across it (never negative).
+  const double across = std::max(0.0, 1.0 - springLength / l);
+  J.dx = -springConstant * (across * (Mat3::Identity() - along) + along);
+  // The damper acts along the spring only.
+  J.dv = -frictionConstant * along;
+  return J;
+  // END EXERCISE 2.7
+}
+
+}  // namespace springlab::net
