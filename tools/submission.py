@@ -22,6 +22,7 @@ import argparse
 import concurrent.futures
 import csv
 import dataclasses
+import functools
 import hashlib
 import json
 import os
@@ -355,6 +356,9 @@ class LabGrader:
     def compile_one(self, name, data, headers):
         """Compile src/<name> to an object, or reuse the same compile of an earlier submission."""
         flags = self.build.compile_argv + ["-Isrc"]
+        # The key covers the instructor's headers too: an object compiled against an older
+        # Simulation (another vtable) must never be linked with the new framework.
+        headers += include_digest(tuple(flags))
         key = hashlib.sha256(json.dumps(flags).encode() + b"\0" + name.encode() + b"\0" + data + headers).hexdigest()
         cached = self.cache.objects / f"{key}.o"
         deps_cached = self.cache.objects / f"{key}.d"
@@ -485,6 +489,22 @@ class Graded:
     @property
     def max_score(self):
         return sum(lab.max_score for lab in self.labs)
+
+
+@functools.lru_cache(maxsize=None)
+def include_digest(flags):
+    """A digest of every header in the compile's include folders inside the project tree."""
+    digest = hashlib.sha256()
+    for flag in flags:
+        if not flag.startswith("-I"):
+            continue
+        folder = pathlib.Path(flag[2:])
+        if not folder.is_absolute() or not folder.is_dir() or folder == pathlib.Path("/usr/include"):
+            continue
+        for header in sorted(folder.rglob("*")):
+            if header.is_file() and header.suffix in (".hpp", ".h", ".hh", ".inl"):
+                digest.update(str(header).encode() + b"\0" + header.read_bytes())
+    return digest.digest()
 
 
 def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandbox, name=None):

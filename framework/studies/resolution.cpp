@@ -158,7 +158,7 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
 
   // 3. Each integrator: the largest dt on the ladder that is stable and within half the
   //    tolerance (integrators in parallel, each walking down its ladder).
-  const std::vector<std::string> names = o.integrators.empty() ? registry.integratorNames() : o.integrators;
+  const std::vector<std::string> names = studyIntegrators(registry, model, o.integrators);
   advice.candidates.resize(names.size());
   parallelFor(static_cast<int>(names.size()), o.threads, [&](int i) {
     Candidate& c = advice.candidates[i];

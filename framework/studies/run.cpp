@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iostream>
 #include <stdexcept>
 
 #include "springlab/frequency_estimate.hpp"
@@ -53,6 +54,25 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   out.forceEvaluations = sim.stats.forceEvaluations;
   out.solverIterations = sim.stats.solverIterations;
   return out;
+}
+
+std::vector<std::string> studyIntegrators(const Registry& registry, const SceneDocument& scene,
+                                          const std::vector<std::string>& requested) {
+  if (!requested.empty()) return requested;
+  std::vector<std::string> usable;
+  for (const std::string& name : registry.integratorNames()) {
+    // One step at the scene's own dt tells whether the method accepts the scene.
+    LoadedScene loaded = registry.loadScene(scene);
+    loaded.sim->setIntegrator(registry.makeIntegrator(name));
+    loaded.sim->setBlowUpCheck(false);
+    try {
+      loaded.sim->operate(loaded.settings.dt);
+      usable.push_back(name);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "springlab: leaving out " << name << ": " << e.what() << "\n";
+    }
+  }
+  return usable;
 }
 
 std::vector<double> positionErrors(const RunResult& run, const RunResult& reference) {

@@ -83,7 +83,7 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
   }
   study.maxAngularFrequency = sceneMaxAngularFrequency(registry, scene);
   study.duration = o.duration > 0.0 ? o.duration : defaultStabilityDuration(study.maxAngularFrequency);
-  const std::vector<std::string> names = o.integrators.empty() ? registry.integratorNames() : o.integrators;
+  const std::vector<std::string> names = studyIntegrators(registry, scene, o.integrators);
 
   // One bisection per integrator, in parallel; the first guess is the prediction (or, for a
   // method without an undamped limit, the symplectic Euler prediction).

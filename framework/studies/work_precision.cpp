@@ -13,7 +13,7 @@ WorkPrecision workPrecision(const Registry& registry, const SceneDocument& scene
   WorkPrecision study;
   study.scene = scene.file;
   study.duration = o.duration;
-  const std::vector<std::string> names = o.integrators.empty() ? registry.integratorNames() : o.integrators;
+  const std::vector<std::string> names = studyIntegrators(registry, scene, o.integrators);
 
   // The dt ladder: the sample interval over powers of two, starting at about twice the
   // largest stable dt of any method (RK4's 2.83 / w_max) unless given.

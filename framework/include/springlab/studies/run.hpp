@@ -53,6 +53,13 @@ double sceneMaxAngularFrequency(const Registry& registry, const SceneDocument& s
 // The integrator's stability constant c (dt < c / w_max), by name.
 double stabilityConstant(const Registry& registry, const std::string& integrator);
 
+// The integrators a study compares: `requested` as given, or else every registered one that
+// can run this scene. An integrator refuses a scene it cannot handle with
+// std::invalid_argument (an implicit method on a scene without force Jacobians); such
+// integrators are left out with a note on stderr, not reported as failures.
+std::vector<std::string> studyIntegrators(const Registry& registry, const SceneDocument& scene,
+                                          const std::vector<std::string>& requested);
+
 // Median of a list (the list is copied).
 double median(std::vector<double> values);
 
