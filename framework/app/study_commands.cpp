@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 
@@ -80,12 +81,14 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
   // The table a student reads: measured against predicted.
   std::cout << "w_max = " << study.maxAngularFrequency << " rad/s (Lanczos), Gershgorin bound "
             << study.gershgorinBound << " rad/s; each trial runs " << study.duration << " s\n";
-  std::cout << std::left << std::setw(18) << "integrator" << std::setw(8) << "c" << std::setw(16) << "predicted dt"
+  std::cout << std::left << std::setw(22) << "integrator" << std::setw(8) << "c" << std::setw(16) << "predicted dt"
             << std::setw(16) << "measured dt" << "measured/predicted\n";
   for (const studies::CriticalDt& m : study.methods) {
-    std::cout << std::setw(18) << m.integrator << std::setw(8) << m.stabilityConstant << std::setw(16)
-              << (m.predicted > 0.0 ? std::to_string(m.predicted) : "none") << std::setw(16) << m.measured
-              << (m.predicted > 0.0 ? std::to_string(m.measured / m.predicted) : "-") << "\n";
+    // "none": no limit without damping (c = 0); "unlimited": unconditionally stable (c = inf).
+    const bool finite = std::isfinite(m.predicted) && m.predicted > 0.0;
+    const std::string predicted = finite ? std::to_string(m.predicted) : m.predicted > 0.0 ? "unlimited" : "none";
+    std::cout << std::setw(22) << m.integrator << std::setw(8) << m.stabilityConstant << std::setw(16) << predicted
+              << std::setw(16) << m.measured << (finite ? std::to_string(m.measured / m.predicted) : "-") << "\n";
   }
 
   nlohmann::json facts = sceneFacts(doc, o);

@@ -93,7 +93,11 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
     const double c = stabilityConstant(registry, names[i]);
     const double w = study.maxAngularFrequency;
     const double predicted = c > 0.0 && w > 0.0 ? c / w : 0.0;
-    const double guess = predicted > 0.0 ? predicted : (w > 0.0 ? 2.0 / w : 0.01);
+    // An unconditionally stable method (c = inf) starts at 100 / w_max: stable there means no
+    // limit within the doublings (reported as inf).
+    const double guess = std::isfinite(predicted) && predicted > 0.0 ? predicted
+                         : w > 0.0 ? (std::isinf(c) ? 100.0 / w : 2.0 / w)
+                                   : 0.01;
     try {
       results[i] = criticalDt(registry, scene, names[i], study.duration, guess, o.tolerance, o.maxSteps);
     } catch (const NotImplemented& e) {
