@@ -20,3 +20,15 @@ chart 01_rope stability scenes/mass_on_spring.json --no-map
 chart 01_rope work-precision scenes/rope.json --time 0.5
 chart 01_rope stability scenes/rope.json
 chart 01_rope resolution scenes/rope.json --observable sag --tol 0.02
+
+# Lab 2: the 32 x 32 hanging cloth with only springs and gravity at work (stretch limiting
+# off: it is a position correction that hides instability).
+CLOTH=(--set net.resolution=32 --set net.stretch_limit.enabled=false)
+chart 02_net stability scenes/net_hanging.json "${CLOTH[@]}" --no-map
+chart 02_net work-precision scenes/net_hanging.json "${CLOTH[@]}" --time 0.2 --levels 6 --repeats 1
+chart 02_net resolution scenes/net_hanging.json --observable drape_height --tol 0.02 --time 1 --resolutions 8,16,32
+
+# Lab 3: the bouncing ball.
+chart 03_softbody stability scenes/softbody_ball.json --no-map
+chart 03_softbody work-precision scenes/softbody_ball.json --time 0.2 --levels 6 --repeats 1
+chart 03_softbody resolution scenes/softbody_ball.json --observable volume --tol 0.02 --time 0.5 --resolutions 1,2,3

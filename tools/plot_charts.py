@@ -98,13 +98,20 @@ def stability(folder):
     xs = range(len(rows))
     measured = [float(r["measured_dt_s"]) for r in rows]
     finite = [m for m in measured if 0 < m < float("inf")]
-    top = max(finite + [float(r["predicted_dt_s"]) for r in rows]) * 3 if finite else 1.0
+    inf = float("inf")
+    predictions = [float(r["predicted_dt_s"]) for r in rows]
+    top = max(finite + [p for p in predictions if 0 < p < inf]) * 3 if finite else 1.0
     for x, r in zip(xs, rows):
         colour, marker = style(r["integrator"], x)
         m = float(r["measured_dt_s"])
         ax.scatter([x], [m if 0 < m < float("inf") else top], marker=marker, s=90, color=colour, zorder=4)
         p = float(r["predicted_dt_s"])
-        if p > 0:
+        if p == float("inf"):
+            # Unconditionally stable in theory (implicit Euler): say what the bisection found.
+            text = "c = inf: no limit found" if m == float("inf") else f"c = inf in theory;\nfails at {m:.3g} s"
+            ax.annotate(text, (x, m if m < float("inf") else top), textcoords="offset points", xytext=(-40, 12),
+                        fontsize=8, color="0.3")
+        elif p > 0:
             ax.hlines(p, x - 0.35, x + 0.35, color="black", lw=2)
             ax.annotate(f"measured {m / p:.3f}x\npredicted", (x, m), textcoords="offset points", xytext=(12, 4),
                         fontsize=8)
