@@ -243,5 +243,21 @@ TEST(HangingCloth, ImplicitEulerConvergesAtFirstOrder) {
                                    << " s gives order " << measured;
 }
 
+// Implicit Euler damps every mode it cannot resolve: an undamped cloth released from rest swings
+// down and comes to rest, which no energy-conserving method would let it do.
+TEST(HangingCloth, ImplicitEulerDecaysTheSwingOfAnUndampedCloth) {
+  LoadedScene loaded = allLabs().loadScene(undampedCloth(6));
+  Simulation& sim = *loaded.sim;
+  sim.setIntegrator(allLabs().makeIntegrator("implicit_euler"));
+  double largest = 0.0;
+  for (int n = 0; n < 3000; ++n) {
+    sim.operate(1.0 / 60.0);
+    largest = std::max(largest, sim.energies().kinetic);
+  }
+  const double last = sim.energies().kinetic;
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(last, 1e-3 * largest) << "implicit Euler must damp the swing of an undamped cloth away over 50 s";
+}
+
 }  // namespace
 }  // namespace springlab
