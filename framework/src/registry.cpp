@@ -51,30 +51,15 @@ std::string labOf(const SceneDocument& document) {
 }
 }  // namespace
 
-namespace {
-// The value at a dotted key ("mesh.subdivisions") inside a lab's section, or null.
-const nlohmann::json* atDottedKey(const nlohmann::json& section, const std::string& key) {
-  const nlohmann::json* node = &section;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t dot = key.find('.', start);
-    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    if (!node->is_object() || !node->contains(part)) return nullptr;
-    node = &(*node)[part];
-    if (dot == std::string::npos) return node;
-    start = dot + 1;
-  }
-}
-}  // namespace
-
 int Registry::resolution(const SceneDocument& document) const {
   const std::string lab = labOf(document);
   const ResolutionRule& rule = resolutionRule(lab);
-  const nlohmann::json* value = atDottedKey(document.json[lab], rule.key);
-  if (!value || !value->is_number_integer()) {
+  const nlohmann::json& section = document.json[lab];
+  const auto key = dottedKey(rule.key);
+  if (!section.contains(key) || !section[key].is_number_integer()) {
     throw SceneError(document.file + ": " + lab + "." + rule.key + ": the resolution key must be an integer");
   }
-  return value->get<int>();
+  return section[key].get<int>();
 }
 
 SceneDocument Registry::atResolution(const SceneDocument& document, int value) const {
@@ -84,14 +69,7 @@ SceneDocument Registry::atResolution(const SceneDocument& document, int value) c
   if (rule.rescale) {
     rule.rescale(out.json[lab], value);
   } else {
-    // A dotted key names a nested value: "mesh.subdivisions".
-    nlohmann::json* node = &out.json[lab];
-    std::size_t start = 0;
-    for (std::size_t dot = rule.key.find('.'); dot != std::string::npos; dot = rule.key.find('.', start)) {
-      node = &(*node)[rule.key.substr(start, dot - start)];
-      start = dot + 1;
-    }
-    (*node)[rule.key.substr(start)] = value;
+    out.json[lab][dottedKey(rule.key)] = value;
   }
   return out;
 }

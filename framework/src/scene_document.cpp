@@ -1,5 +1,6 @@
 #include "springlab/scene_document.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -49,6 +50,12 @@ void SceneDocument::set(const std::string& assignment) {
   } catch (const nlohmann::json::parse_error&) {
     *node = text;
   }
+}
+
+nlohmann::json::json_pointer dottedKey(const std::string& key) {
+  std::string pointer = "/" + key;
+  std::replace(pointer.begin(), pointer.end(), '.', '/');
+  return nlohmann::json::json_pointer(pointer);
 }
 
 }  // namespace springlab

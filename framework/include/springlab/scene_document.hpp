@@ -21,4 +21,7 @@ struct SceneDocument {
   void set(const std::string& assignment);
 };
 
+// The JSON pointer of a dotted key: "mesh.subdivisions" -> "/mesh/subdivisions".
+nlohmann::json::json_pointer dottedKey(const std::string& key);
+
 }  // namespace springlab
