@@ -29,6 +29,30 @@ TEST(RopeResolution, KeepsLengthMassAndStretch) {
   EXPECT_NO_THROW(allLabs().loadScene(fine));
 }
 
+TEST(BallResolution, NestedKeyRefinesTheMeshAndKeepsTheMass) {
+  const SceneDocument ball = shippedScene("softbody_ball.json");
+  const SceneDocument coarse = allLabs().atResolution(ball, 1);
+  EXPECT_EQ(allLabs().resolution(coarse), 1);
+  EXPECT_EQ(coarse.json["softbody"]["mesh"]["subdivisions"].get<int>(), 1) << "the dotted key mesh.subdivisions is nested";
+  EXPECT_EQ(coarse.json["softbody"]["total_mass"], ball.json["softbody"]["total_mass"]);
+  EXPECT_EQ(allLabs().loadScene(coarse).sim->numOfMasses(), 42) << "an icosphere of 1 subdivision has 42 vertices";
+}
+
+TEST(NetResolution, KeepsTheTotalMassOfAPerParticleNet) {
+  SceneDocument net = shippedScene("net_hanging.json");
+  auto totalMass = [](const SceneDocument& d) {
+    double m = 0.0;
+    for (const Mass& mass : allLabs().loadScene(d).sim->masses) m += mass.m;
+    return m;
+  };
+  const double total = totalMass(net);
+  net.json["net"].erase("areal_density");
+  net.json["net"]["particle_mass"] = total / 400.0;  // 20 x 20 masses
+  const SceneDocument fine = allLabs().atResolution(net, 31);
+  EXPECT_EQ(allLabs().resolution(fine), 31);
+  EXPECT_NEAR(totalMass(fine), totalMass(net), 1e-9 * total) << "the same cloth at any resolution";
+}
+
 TEST(RopeObservables, SagAndTipOfAHangingMass) {
   LoadedScene s = allLabs().loadScene(shippedScene("mass_on_spring.json"));
   const std::vector<Observable> o = s.sim->observables();
