@@ -50,11 +50,6 @@ void Simulation::evaluateForces(const State& s, std::vector<Vec3>& f) {
   ++stats.forceEvaluations;
 }
 
-double Simulation::inverseMass(int i) const {
-  if (grabbed_ && *grabbed_ == i) return 0.0;
-  return masses[i].inverseMass();
-}
-
 void Simulation::forceJacobian(const State& s, ForceJacobian& J, const std::string& who) {
   J.clear();
   if (!addForceJacobian(s, J)) {

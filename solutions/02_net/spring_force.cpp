@@ -9,10 +9,11 @@ Vec3 springDamperForce(const Vec3& x1, const Vec3& x2, const Vec3& v1, const Vec
   const Vec3 x12 = x1 - x2;
   const double l = x12.norm();
   if (l == 0.0) return Vec3::Zero();
-  const Vec3 e = x12 / l;
+  const double inverseLength = 1.0 / l;  // one division, then products: e = x12 / l
 
   // Hooke's law along e, plus damping of the relative velocity along e.
-  return -springConstant * (l - springLength) * e - frictionConstant * (v1 - v2).dot(e) * e;
+  const double alongSpeed = (v1 - v2).dot(x12) * inverseLength;
+  return (-springConstant * (l - springLength) - frictionConstant * alongSpeed) * inverseLength * x12;
   // END EXERCISE 2.2
 }
 

@@ -64,7 +64,11 @@ class Simulation {
   // Forces at an arbitrary state (not necessarily the current one); counts one evaluation.
   void evaluateForces(const State& s, std::vector<Vec3>& f);
   // 1/m, or 0 for a mass moved only by the scene (pinned or grabbed by the user).
-  double inverseMass(int i) const;
+  // Inline: integrators call it for every mass in every step.
+  double inverseMass(int i) const {
+    if (grabbed_ && *grabbed_ == i) return 0.0;
+    return masses[static_cast<std::size_t>(i)].inverseMass();
+  }
   // Add the force Jacobians dF/dx and dF/dv at state s into J (implicit integrators call it
   // after J.clear()). Returns false when the scene cannot linearise its forces (the default);
   // forceJacobian() then throws, naming the scene.
