@@ -29,9 +29,10 @@ void implicitEulerBlocks(const Simulation& sim, const std::vector<Vec3>& force, 
     dv[o.i] += dt * dt * (o.dx * v[o.i]);
   }
 
-  // Solve each mass's 3x3 system; masses the scene moves do not change velocity.
+  // Solve each mass's 3x3 system (symmetric positive definite: Cholesky); masses the
+  // scene moves do not change velocity.
   for (int i = 0; i < n; ++i) {
-    dv[i] = sim.inverseMass(i) == 0.0 ? Vec3::Zero() : Vec3(diagonal[i].ldlt().solve(dv[i]));
+    dv[i] = sim.inverseMass(i) == 0.0 ? Vec3::Zero() : Vec3(diagonal[i].llt().solve(dv[i]));
   }
   // END EXERCISE 2.9
 }
