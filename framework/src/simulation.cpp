@@ -21,8 +21,14 @@ void Simulation::solve() {
 }
 
 void Simulation::simulate(double dt) {
-  // Integrate, then let the scene move its kinematic masses and project contacts.
-  integrator_->step(*this, dt);
+  // Integrate, then let the scene move its kinematic masses and project contacts. What the
+  // integrator does besides evaluating forces is its "integration" phase; the lab's
+  // afterStep charges its corrections to their own phases.
+  const PhaseProfile::Scope step(profile, Phase::kOther);
+  {
+    const PhaseProfile::Scope integration(profile, Phase::kIntegration);
+    integrator_->step(*this, dt);
+  }
   ++stats.steps;
   afterStep(dt);
 
@@ -45,6 +51,7 @@ void Simulation::operate(double dt) {
 }
 
 void Simulation::evaluateForces(const State& s, std::vector<Vec3>& f) {
+  const PhaseProfile::Scope forces(profile, Phase::kForces);
   f.assign(masses.size(), Vec3::Zero());
   accumulateForces(s, f);
   ++stats.forceEvaluations;

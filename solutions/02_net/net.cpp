@@ -66,7 +66,10 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
   const Wind& w = settings.wind;
   const bool windActs = w.model == WindModel::Relative ? w.drag > 0.0 : w.strength > 0.0;
   if (windActs && !triangles.empty()) {
-    vertexNormals(s.pos, triangles, normals_, areas_);
+    {
+      const PhaseProfile::Scope phase(profile, Phase::kNormals);
+      vertexNormals(s.pos, triangles, normals_, areas_);
+    }
     for (int i = 0; i < numOfMasses(); ++i) f[i] += windForce(w, s.vel[i], normals_[i], areas_[i]);
   }
 }
@@ -106,9 +109,11 @@ void Net::afterStep(double dt) {
   inverseMass_.resize(masses.size());
   for (int i = 0; i < numOfMasses(); ++i) inverseMass_[static_cast<std::size_t>(i)] = inverseMass(i);
   if (settings.stretchLimiting) {
+    const PhaseProfile::Scope phase(profile, Phase::kStretchLimit);
     limitStretch(state.pos, state.vel, springs, inverseMass_, settings.maxStretch, dt, kStretchPasses);
   }
   if (settings.selfCollision) {
+    const PhaseProfile::Scope phase(profile, Phase::kCollisions);
     for (const auto& [i, j] : closePairs(state.pos, settings.thickness)) {
       separatePair(state.pos[i], state.pos[j], state.vel[i], state.vel[j], inverseMass_[static_cast<std::size_t>(i)],
                    inverseMass_[static_cast<std::size_t>(j)], settings.thickness);
@@ -116,6 +121,7 @@ void Net::afterStep(double dt) {
   }
 
   // Colliders last, so no mass ends a step inside one (exercise 2.5).
+  const PhaseProfile::Scope collisions(profile, Phase::kCollisions);
   for (int i = 0; i < numOfMasses(); ++i) {
     if (inverseMass_[static_cast<std::size_t>(i)] == 0.0) continue;
     for (const SphereCollider& sphere : spheres_) {

@@ -15,6 +15,7 @@
 #include "springlab/not_implemented.hpp"
 #include "springlab/math.hpp"
 #include "springlab/parameter.hpp"
+#include "springlab/phase_profile.hpp"
 #include "springlab/shape.hpp"
 #include "springlab/spring.hpp"
 #include "springlab/state.hpp"
@@ -51,6 +52,7 @@ class Simulation {
   State state;                   // positions [n], velocities [n], time
   std::vector<Vec3> force;       // [n] N, forces of the last solve()
   Stats stats;
+  PhaseProfile profile;          // where the steps' time goes, when enabled (sim --profile, benchmarks)
 
   int numOfMasses() const { return static_cast<int>(masses.size()); }
 

@@ -1,0 +1,57 @@
+// One step of the cloth with each integrator, and the cloth thesis' frame broken down into
+// its phases (forces, integration, collisions, stretch limit, normals), on the reference.
+//   NetStep<Integrator>/r/material/threads: the bare cloth (bench_support.hpp), the
+//     integrator's own work only. Symplectic Euler at a dt it survives (1/60 s on the thesis
+//     material, 0.1 ms on the fabric); the implicit ones at the thesis' frame, 1/60 s.
+//   NetFrame/r/threads: the thesis' scene with implicit Euler (per-particle blocks), one step
+//     of 1/60 s per frame; its counters give the table's columns.
+#include "bench_support.hpp"
+
+namespace springlab::bench {
+namespace {
+
+void stepCloth(benchmark::State& bench, const std::string& integrator) {
+  const int r = static_cast<int>(bench.range(0));
+  const int material = static_cast<int>(bench.range(1));
+  useThreads(static_cast<int>(bench.range(2)));
+  net::Net sim(3, cloth(r, material));
+  sim.setIntegrator(registry().makeIntegrator(integrator));
+  const double dt = integrator == "symplectic_euler" && material == 1 ? 1e-4 : 1.0 / 60.0;
+  timeSteps(bench, sim, dt, 30);
+  useThreads(1);
+}
+
+void NetStepSymplecticEuler(benchmark::State& s) { stepCloth(s, "symplectic_euler"); }
+void NetStepImplicitEuler(benchmark::State& s) { stepCloth(s, "implicit_euler"); }
+void NetStepImplicitEulerBlocks(benchmark::State& s) { stepCloth(s, "implicit_euler_blocks"); }
+
+// The thesis' sizes and two larger ones on the thesis material, one thread; r = 256 and
+// 1024... on two threads too; the fabric at r = 64 shows what conditioning does to CG.
+void sizes(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"r", "material", "threads"});
+  for (int r : {8, 16, 32, 48, 64, 128, 256}) b->Args({r, 0, 1});
+  b->Args({256, 0, 2});
+  b->Args({64, 1, 1});
+  b->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+BENCHMARK(NetStepSymplecticEuler)->Apply(sizes);
+BENCHMARK(NetStepImplicitEuler)->Apply(sizes);
+BENCHMARK(NetStepImplicitEulerBlocks)->Apply(sizes);
+
+void NetFrame(benchmark::State& bench) {
+  const int r = static_cast<int>(bench.range(0));
+  useThreads(static_cast<int>(bench.range(1)));
+  net::Net sim(3, thesisFrame(r));
+  sim.setIntegrator(registry().makeIntegrator("implicit_euler_blocks"));
+  timeSteps(bench, sim, 1.0 / 60.0, 30);
+  useThreads(1);
+}
+BENCHMARK(NetFrame)
+    ->ArgNames({"r", "threads"})
+    ->ArgsProduct({{8, 16, 32, 48, 64, 128, 256}, {1}})
+    ->Args({256, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace springlab::bench
