@@ -9,8 +9,11 @@ void SymplecticEuler::step(Simulation& sim, double dt) {
   sim.evaluateForces(sim.state, sim.force);
 
   // Kick, then drift with the new velocity: v += F/m dt; x += v dt.
+  // Each mass on its own: split over threads for large systems.
   State& s = sim.state;
-  for (int i = 0; i < sim.numOfMasses(); ++i) {
+  const int n = sim.numOfMasses();
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (int i = 0; i < n; ++i) {
     s.vel[i] += sim.force[i] * (sim.inverseMass(i) * dt);
     s.pos[i] += s.vel[i] * dt;
   }

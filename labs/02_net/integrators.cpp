@@ -2,8 +2,6 @@
 // that provides its force Jacobians (Simulation::addForceJacobian).
 #include <cmath>
 
-#include <Eigen/IterativeLinearSolvers>
-
 #include "net.hpp"
 
 namespace springlab::net {
@@ -47,10 +45,8 @@ class ImplicitEuler final : public Integrator {
     dv_.assign(static_cast<std::size_t>(n), Vec3::Zero());
     if (system_.size() > 0) {
       if (guess_.size() != system_.size()) guess_.setZero(system_.size());
-      cg_.setTolerance(kTolerance);
-      cg_.compute(system_.matrix());
-      guess_ = cg_.solveWithGuess(system_.rhs(), guess_);
-      sim.stats.solverIterations += cg_.iterations();
+      cg_.tolerance = kTolerance;
+      sim.stats.solverIterations += cg_.solve(system_, guess_);
       for (int i = 0; i < n; ++i) {
         if (system_.row(i) >= 0) dv_[static_cast<std::size_t>(i)] = guess_.segment<3>(system_.row(i));
       }
@@ -64,7 +60,7 @@ class ImplicitEuler final : public Integrator {
   std::vector<char> free_;      // [n] 1 for a mass the forces move
   std::vector<Vec3> dv_;        // [n] m/s
   Eigen::VectorXd guess_;       // [3 x free masses] last solution, CG's starting point
-  Eigen::ConjugateGradient<BlockSystem::Matrix, Eigen::Lower | Eigen::Upper> cg_;
+  BlockJacobiCG cg_;
 };
 
 // Linearised backward Euler keeping each mass's own 3x3 block only (exercise 2.9).

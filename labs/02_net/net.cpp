@@ -10,6 +10,9 @@ namespace springlab::net {
 namespace {
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 constexpr int kStretchPasses = 10;  // Gauss-Seidel passes of stretch limiting per step
+// Below these sizes a loop is too short to be worth waking a second thread.
+constexpr int kParallelMasses = 4096;
+constexpr int kParallelSprings = 4096;
 }  // namespace
 
 Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
@@ -48,35 +51,48 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
   markInitialState();
 }
 
-void Net::accumulateForces(const State& s, std::vector<Vec3>& f) {
+// Both loops below run once per spring per step: `flatten` inlines the exercises they call
+// where the compiler sees them (the reference is built as one unit). Springs run in batches
+// on several threads (springlab/spring_batches.hpp); the sums do not depend on the count.
+[[gnu::flatten]] void Net::accumulateForces(const State& s, std::vector<Vec3>& f) {
   // Springs: equal and opposite on their ends (exercise 2.2).
-  for (const Spring& sp : springs) {
+  if (!batches_.fits(springs.size())) batches_ = SpringBatches(springs);
+  batches_.forEach([&](int k) {
+    const Spring& sp = springs[static_cast<std::size_t>(k)];
     const Vec3 f1 = springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
                                       sp.springConstant, sp.springLength, sp.frictionConstant);
     f[sp.mass1] += f1;
     f[sp.mass2] -= f1;
-  }
+  });
   // Gravity and air friction on each mass.
-  for (int i = 0; i < numOfMasses(); ++i) {
+  const int n = numOfMasses();
+#pragma omp parallel for schedule(static) if (n > kParallelMasses)
+  for (int i = 0; i < n; ++i) {
     f[i] += masses[i].m * (gravitation - settings.airFriction * s.vel[i]);
   }
   // Wind on the surface, through each mass's normal and area (exercises 2.3 and 2.4).
   const Wind& w = settings.wind;
   const bool windActs = w.model == WindModel::Relative ? w.drag > 0.0 : w.strength > 0.0;
   if (windActs && !triangles.empty()) {
-    vertexNormals(s.pos, triangles, normals_, areas_);
+    {
+      const PhaseProfile::Scope phase(profile, Phase::kNormals);
+      vertexNormals(s.pos, triangles, normals_, areas_);
+    }
     for (int i = 0; i < numOfMasses(); ++i) f[i] += windForce(w, s.vel[i], normals_[i], areas_[i]);
   }
 }
 
-bool Net::addForceJacobian(const State& s, ForceJacobian& J) {
-  // Springs (exercise 2.7), in the order of `springs`; the wind stays explicit.
+[[gnu::flatten]] bool Net::addForceJacobian(const State& s, ForceJacobian& J) {
+  // Springs (exercise 2.7), in the order of `springs`; the wind stays explicit. Each pair is
+  // written once (resize leaves them unset), by whichever thread computes it.
   J.pairs.resize(springs.size());
-  for (std::size_t k = 0; k < springs.size(); ++k) {
-    const Spring& sp = springs[k];
+  const int count = static_cast<int>(springs.size());
+#pragma omp parallel for schedule(static) if (count > kParallelSprings)
+  for (int k = 0; k < count; ++k) {
+    const Spring& sp = springs[static_cast<std::size_t>(k)];
     const SpringJacobian sj =
         springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant, sp.springLength, sp.frictionConstant);
-    J.pairs[k] = {sp.mass1, sp.mass2, sj.dx, sj.dv};
+    J.pairs[static_cast<std::size_t>(k)] = ForceJacobian::Pair(sp.mass1, sp.mass2, sj.dx, sj.dv);
   }
   // Air friction, -c m v on each mass.
   if (settings.airFriction > 0.0) {
@@ -104,9 +120,11 @@ void Net::afterStep(double dt) {
   inverseMass_.resize(masses.size());
   for (int i = 0; i < numOfMasses(); ++i) inverseMass_[static_cast<std::size_t>(i)] = inverseMass(i);
   if (settings.stretchLimiting) {
+    const PhaseProfile::Scope phase(profile, Phase::kStretchLimit);
     limitStretch(state.pos, state.vel, springs, inverseMass_, settings.maxStretch, dt, kStretchPasses);
   }
   if (settings.selfCollision) {
+    const PhaseProfile::Scope phase(profile, Phase::kCollisions);
     for (const auto& [i, j] : closePairs(state.pos, settings.thickness)) {
       separatePair(state.pos[i], state.pos[j], state.vel[i], state.vel[j], inverseMass_[static_cast<std::size_t>(i)],
                    inverseMass_[static_cast<std::size_t>(j)], settings.thickness);
@@ -114,6 +132,7 @@ void Net::afterStep(double dt) {
   }
 
   // Colliders last, so no mass ends a step inside one (exercise 2.5).
+  const PhaseProfile::Scope collisions(profile, Phase::kCollisions);
   for (int i = 0; i < numOfMasses(); ++i) {
     if (inverseMass_[static_cast<std::size_t>(i)] == 0.0) continue;
     for (const SphereCollider& sphere : spheres_) {

@@ -18,6 +18,7 @@
 #include <springlab/registry.hpp>
 #include <springlab/scene_reader.hpp>
 #include <springlab/simulation.hpp>
+#include <springlab/spring_batches.hpp>
 
 namespace springlab::net {
 
@@ -190,6 +191,8 @@ class BlockSystem {
   const Matrix& matrix() const { return a_; }
   const Eigen::VectorXd& rhs() const { return b_; }
   Mat3 block(int i, int j) const;  // A's block for masses i and j (zero outside the pattern)
+  Mat3 diagonalBlock(int i) const; // A_ii, quickly (zero when mass i is eliminated)
+  int masses() const { return static_cast<int>(row_.size()); }
   Vec3 rhsOf(int i) const;         // b's part for mass i (zero when eliminated)
 
  private:
@@ -207,6 +210,25 @@ class BlockSystem {
   std::vector<std::array<Slot, 2>> pair_;   // [p] slots of A_ij and A_ji
   std::vector<char> patternFree_;           // what the pattern was built for
   std::vector<std::pair<int, int>> patternPairs_;
+};
+
+// ---- Given: conjugate gradients for a BlockSystem ---------------------------------------
+// Preconditioned CG, stopping at |b - A x| <= tolerance |b| (as Eigen's ConjugateGradient).
+// The preconditioner inverts each free mass's own 3x3 block (block Jacobi): it sees a
+// spring's direction, where a diagonal one sees three scalars. Its vectors are kept between
+// solves, so a step allocates nothing; dot products run in a fixed order, so the result does
+// not depend on the number of threads.
+class BlockJacobiCG {
+ public:
+  double tolerance = 1e-6;
+  // Solve A x = b of `system`, starting from x (a warm start); returns the iterations made
+  // (at most 2 x rows, as Eigen's).
+  int solve(const BlockSystem& system, Eigen::VectorXd& x);
+
+ private:
+  void precondition(const Eigen::VectorXd& in, Eigen::VectorXd& out) const;
+  std::vector<Mat3> inverseDiagonal_;  // [free masses] A_ii^-1
+  Eigen::VectorXd r_, z_, p_, q_;      // residual, preconditioned residual, direction, A p
 };
 
 // ---- Exercise 2.8: implicit Euler, the sparse system --------------------------------
@@ -271,6 +293,7 @@ class Net final : public Simulation {
   int rows_ = 0;
   std::vector<SphereCollider> spheres_;            // current colliders
   std::vector<std::optional<Vec3>> sphereTarget_;  // [spheres] where a drag moves each next step
+  SpringBatches batches_;                          // the springs split for threads (force pass)
   std::vector<Vec3> normals_;                      // [n] scratch for the wind
   std::vector<double> areas_;                      // [n] m^2
   std::vector<double> inverseMass_;                // [n] scratch for stretch limiting

@@ -1,5 +1,3 @@
-#include <algorithm>
-
 #include "net.hpp"
 
 namespace springlab::net {

@@ -70,6 +70,7 @@ void SoftBody::accumulateForces(const State& s, std::vector<Vec3>& f) {
 
   // Penalty contact with every obstacle (exercises 3.6 and 3.7); projection acts in afterStep.
   if (p_.contactMethod == ContactMethod::Penalty) {
+    const PhaseProfile::Scope phase(profile, Phase::kCollisions);
     for (int i = 0; i < numOfMasses(); ++i) {
       for (const Obstacle& o : p_.obstacles) {
         const Penetration pen = penetration(s.pos[i], o);
@@ -104,6 +105,7 @@ void SoftBody::afterStep(double dt) {
 
   // Projection: push each mass out of every obstacle and fix its velocity (exercise 3.8).
   if (p_.contactMethod != ContactMethod::Projection) return;
+  const PhaseProfile::Scope phase(profile, Phase::kCollisions);
   for (int i = 0; i < numOfMasses(); ++i) {
     if (inverseMass(i) == 0.0) continue;
     for (const Obstacle& o : p_.obstacles) {

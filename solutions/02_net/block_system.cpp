@@ -121,6 +121,16 @@ Mat3 BlockSystem::block(int i, int j) const {
   return out;
 }
 
+Mat3 BlockSystem::diagonalBlock(int i) const {
+  const Slot& slot = diagonal_[static_cast<std::size_t>(i)];
+  Mat3 out = Mat3::Zero();
+  if (slot.base < 0) return out;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) out(a, b) = a_.valuePtr()[slot.base + a * slot.stride + b];
+  }
+  return out;
+}
+
 Vec3 BlockSystem::rhsOf(int i) const {
   const int first = row_[static_cast<std::size_t>(i)];
   return first >= 0 ? Vec3(b_.segment<3>(first)) : Vec3::Zero();

@@ -1,0 +1,45 @@
+#pragma once
+// Springs split for two or more threads without locks and with results that do not depend
+// on the thread count. A grid's springs are listed in the order of their lower mass index;
+// cut that list into batches of B consecutive lower indices, B at least the largest index
+// distance a spring spans. Then batch b touches masses [b B, (b + 2) B) only, so batches two
+// apart share no mass: all even batches run at once, then all odd ones. Every mass receives
+// its springs' forces in the same order however many threads run, so sums are bitwise equal.
+// A spring list in any other order gets one batch (a serial loop), which is still correct.
+#include <vector>
+
+#include "springlab/spring.hpp"
+
+namespace springlab {
+
+class SpringBatches {
+ public:
+  SpringBatches() = default;
+  // Batches for `springs` over `masses` masses; at least `minimumSpan` lower indices each.
+  explicit SpringBatches(const std::vector<Spring>& springs, int minimumSpan = 64);
+
+  int count() const { return static_cast<int>(begin_.size()) - 1; }
+  // Springs [begin(b), end(b)) form batch b.
+  int begin(int b) const { return begin_[static_cast<std::size_t>(b)]; }
+  int end(int b) const { return begin_[static_cast<std::size_t>(b) + 1]; }
+  // Whether these batches were made for a list of this many springs.
+  bool fits(std::size_t springs) const { return count() >= 0 && static_cast<std::size_t>(begin_.back()) == springs; }
+
+  // perSpring(k) for every spring k, even batches in parallel, then odd ones. perSpring may
+  // add to both ends' entries of per-mass arrays.
+  template <class PerSpring>
+  void forEach(PerSpring&& perSpring) const {
+    const int batches = count();
+    for (int parity = 0; parity < 2; ++parity) {
+#pragma omp parallel for schedule(static) if (batches > 2)
+      for (int b = parity; b < batches; b += 2) {
+        for (int k = begin(b); k < end(b); ++k) perSpring(k);
+      }
+    }
+  }
+
+ private:
+  std::vector<int> begin_{0};  // [batches + 1]
+};
+
+}  // namespace springlab
