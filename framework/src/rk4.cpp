@@ -6,21 +6,19 @@ namespace springlab {
 
 void RungeKutta4::step(Simulation& sim, double dt) {
   // Four stages: the start, the midpoint twice (each from the previous stage's rates), the end.
-  detail::Rates k1, k2, k3, k4;
-  State trial;
-  detail::ratesAt(sim, sim.state, k1);
-  detail::advance(sim.state, k1, 0.5 * dt, trial);
-  detail::ratesAt(sim, trial, k2);
-  detail::advance(sim.state, k2, 0.5 * dt, trial);
-  detail::ratesAt(sim, trial, k3);
-  detail::advance(sim.state, k3, dt, trial);
-  detail::ratesAt(sim, trial, k4);
+  detail::ratesAt(sim, sim.state, k1_);
+  detail::advance(sim.state, k1_, 0.5 * dt, trial_);
+  detail::ratesAt(sim, trial_, k2_);
+  detail::advance(sim.state, k2_, 0.5 * dt, trial_);
+  detail::ratesAt(sim, trial_, k3_);
+  detail::advance(sim.state, k3_, dt, trial_);
+  detail::ratesAt(sim, trial_, k4_);
 
   // Weighted mean of the four rates: 1/6, 2/6, 2/6, 1/6.
   State& s = sim.state;
   for (int i = 0; i < sim.numOfMasses(); ++i) {
-    s.pos[i] += dt / 6.0 * (k1.dx[i] + 2.0 * k2.dx[i] + 2.0 * k3.dx[i] + k4.dx[i]);
-    s.vel[i] += dt / 6.0 * (k1.dv[i] + 2.0 * k2.dv[i] + 2.0 * k3.dv[i] + k4.dv[i]);
+    s.pos[i] += dt / 6.0 * (k1_.dx[i] + 2.0 * k2_.dx[i] + 2.0 * k3_.dx[i] + k4_.dx[i]);
+    s.vel[i] += dt / 6.0 * (k1_.dv[i] + 2.0 * k2_.dv[i] + 2.0 * k3_.dv[i] + k4_.dv[i]);
   }
   s.time += dt;
 }

@@ -9,10 +9,7 @@ namespace springlab::detail {
 
 // Rates at state s: one force evaluation. A kinematic mass (inverseMass 0: pinned or grabbed)
 // keeps its velocity, as in every other integrator; the scene moves it after the step.
-struct Rates {
-  std::vector<Vec3> dx;  // [n] m/s
-  std::vector<Vec3> dv;  // [n] m/s^2
-};
+using Rates = StateRate;
 
 inline void ratesAt(Simulation& sim, const State& s, Rates& k) {
   sim.evaluateForces(s, sim.force);

@@ -57,10 +57,10 @@ void Simulation::evaluateForces(const State& s, std::vector<Vec3>& f) {
   ++stats.forceEvaluations;
 }
 
-void Simulation::forceJacobian(const State& s, ForceJacobian& J, const std::string& who) {
+void Simulation::forceJacobian(const State& s, ForceJacobian& J, std::string_view who) {
   J.clear();
   if (!addForceJacobian(s, J)) {
-    throw std::invalid_argument(who + " needs the force Jacobians dF/dx and dF/dv, which the \"" + kind() +
+    throw std::invalid_argument(std::string(who) + " needs the force Jacobians dF/dx and dF/dv, which the \"" + kind() +
                                 "\" scene does not provide (Simulation::addForceJacobian); choose an explicit "
                                 "integrator such as symplectic_euler");
   }

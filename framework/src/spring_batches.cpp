@@ -2,34 +2,49 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 
 namespace springlab {
 
 SpringBatches::SpringBatches(const std::vector<Spring>& springs, int minimumSpan) {
-  // The list must run in non-decreasing lower index; the span is the largest reach.
+  // The largest index distance a spring spans sets the window width; a little slack lets
+  // the lower index step back by a few masses (a grid cell lists its springs by corner).
   int span = 1;
-  bool ordered = true;
-  for (std::size_t k = 0; k < springs.size(); ++k) {
-    const Spring& s = springs[k];
-    span = std::max(span, std::abs(s.mass2 - s.mass1));
-    if (k > 0 && std::min(s.mass1, s.mass2) < std::min(springs[k - 1].mass1, springs[k - 1].mass2)) ordered = false;
-  }
+  for (const Spring& s : springs) span = std::max(span, std::abs(s.mass2 - s.mass1));
+  const int width = std::max(span + 4, minimumSpan);
+
+  // A new batch wherever the running maximum of the lower index enters the next window.
   begin_.assign(1, 0);
-  if (!ordered) {
-    begin_.push_back(static_cast<int>(springs.size()));
-    return;
-  }
-  // A new batch wherever the lower index enters the next window of `width` masses.
-  const int width = std::max(span, minimumSpan);
-  int window = 0;
+  int highestLow = -1;
   for (std::size_t k = 0; k < springs.size(); ++k) {
     const int low = std::min(springs[k].mass1, springs[k].mass2);
-    if (low / width != window && k > 0) {
-      begin_.push_back(static_cast<int>(k));
-    }
-    window = low / width;
+    if (k > 0 && std::max(highestLow, low) / width != highestLow / width) begin_.push_back(static_cast<int>(k));
+    highestLow = std::max(highestLow, low);
   }
   begin_.push_back(static_cast<int>(springs.size()));
+
+  // Check what running even and odd batches at once needs: the masses of batch b lie below
+  // every mass of the batches from b + 2 on. A list in any other order gets one batch.
+  const int batches = count();
+  std::vector<int> lowest(static_cast<std::size_t>(batches)), highest(static_cast<std::size_t>(batches));
+  for (int b = 0; b < batches; ++b) {
+    int lo = std::numeric_limits<int>::max(), hi = -1;
+    for (int k = begin(b); k < end(b); ++k) {
+      const Spring& s = springs[static_cast<std::size_t>(k)];
+      lo = std::min({lo, s.mass1, s.mass2});
+      hi = std::max({hi, s.mass1, s.mass2});
+    }
+    lowest[static_cast<std::size_t>(b)] = lo;
+    highest[static_cast<std::size_t>(b)] = hi;
+  }
+  int lowestFromHere = std::numeric_limits<int>::max();  // min of lowest over batches >= b + 2
+  for (int b = batches - 3; b >= 0; --b) {
+    lowestFromHere = std::min(lowestFromHere, lowest[static_cast<std::size_t>(b) + 2]);
+    if (highest[static_cast<std::size_t>(b)] >= lowestFromHere) {
+      begin_.assign({0, static_cast<int>(springs.size())});
+      return;
+    }
+  }
 }
 
 }  // namespace springlab

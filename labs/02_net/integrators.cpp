@@ -24,7 +24,8 @@ class ImplicitEuler final : public Integrator {
   // CG stops at this residual relative to |b|.
   static constexpr double kTolerance = 1e-6;
 
-  std::string name() const override { return "implicit_euler"; }
+  static constexpr std::string_view kName = "implicit_euler";
+  std::string name() const override { return std::string(kName); }
   int order() const override { return 1; }
   double stabilityConstant() const override { return INFINITY; }
   void reset() override { guess_.resize(0); }
@@ -33,7 +34,7 @@ class ImplicitEuler final : public Integrator {
     const int n = sim.numOfMasses();
     // Forces and their Jacobians at the start of the step.
     sim.evaluateForces(sim.state, sim.force);
-    sim.forceJacobian(sim.state, jacobian_, name());
+    sim.forceJacobian(sim.state, jacobian_, kName);
 
     // The system over the free masses (exercise 2.8).
     free_.resize(static_cast<std::size_t>(n));
@@ -66,13 +67,14 @@ class ImplicitEuler final : public Integrator {
 // Linearised backward Euler keeping each mass's own 3x3 block only (exercise 2.9).
 class ImplicitEulerBlocks final : public Integrator {
  public:
-  std::string name() const override { return "implicit_euler_blocks"; }
+  static constexpr std::string_view kName = "implicit_euler_blocks";
+  std::string name() const override { return std::string(kName); }
   int order() const override { return 1; }
   double stabilityConstant() const override { return INFINITY; }
 
   void step(Simulation& sim, double dt) override {
     sim.evaluateForces(sim.state, sim.force);
-    sim.forceJacobian(sim.state, jacobian_, name());
+    sim.forceJacobian(sim.state, jacobian_, kName);
     dv_.assign(static_cast<std::size_t>(sim.numOfMasses()), Vec3::Zero());
     implicitEulerBlocks(sim, sim.force, jacobian_, dt, diagonal_, dv_);
     applyVelocityChange(sim, dv_, dt);

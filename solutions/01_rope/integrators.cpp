@@ -1,5 +1,6 @@
 // Integrator classes built on the exercise kernels: they gather each mass's state and
 // acceleration, call the kernel, and scatter the result. Given; the kernels are yours.
+#include <utility>
 #include <vector>
 
 #include "rope.hpp"
@@ -74,7 +75,8 @@ class VelocityVerlet final : public Integrator {
     }
 
     // Drift to the new positions; velocity-dependent forces see a half-kicked velocity.
-    State next = sim.state;
+    State& next = next_;
+    next = sim.state;  // copies into kept buffers
     for (int i = 0; i < n; ++i) {
       next.pos[i] = velocityVerletPosition({sim.state.pos[i], sim.state.vel[i]}, a_[i], dt);
       next.vel[i] = sim.state.vel[i] + 0.5 * a_[i] * dt;
@@ -88,11 +90,12 @@ class VelocityVerlet final : public Integrator {
       a_[i] = nextA;
     }
     next.time += dt;
-    sim.state = std::move(next);
+    std::swap(sim.state, next);  // both buffers stay for the next step
   }
 
  private:
   std::vector<Vec3> a_;  // [n] accelerations at the current state, from the last step
+  State next_;           // the state being built, kept between steps
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 // undamped oscillator it has no stable dt: the energy grows by (1 + y^4/4) per step, y = w dt,
 // slowly enough to look fine for a while. With damping it is stable for small enough dt.
 #include "springlab/integrator.hpp"
+#include "springlab/state.hpp"
 
 namespace springlab {
 
@@ -13,6 +14,11 @@ class Midpoint final : public Integrator {
   int order() const override { return 2; }
   double stabilityConstant() const override { return 0.0; }
   void step(Simulation& sim, double dt) override;
+
+ private:
+  // Kept between steps, so a step allocates nothing once sized.
+  StateRate k1_, k2_;
+  State mid_, next_;
 };
 
 }  // namespace springlab

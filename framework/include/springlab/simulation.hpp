@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "springlab/diagnostics.hpp"
@@ -77,7 +78,7 @@ class Simulation {
   virtual bool addForceJacobian(const State& s, ForceJacobian& J) { (void)s; (void)J; return false; }
   // J = the force Jacobians at s; throws std::invalid_argument naming `who` (an integrator)
   // when the scene does not provide them.
-  void forceJacobian(const State& s, ForceJacobian& J, const std::string& who);
+  void forceJacobian(const State& s, ForceJacobian& J, std::string_view who);
 
   // ---- integrator and run control ----------------------------------------------------
   void setIntegrator(std::unique_ptr<Integrator> integrator);

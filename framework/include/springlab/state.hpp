@@ -13,4 +13,10 @@ struct State {
   std::vector<Vec3> vel;  // [n] m/s
 };
 
+// The rate of change of a state, dx/dt and dv/dt: what Runge-Kutta methods combine.
+struct StateRate {
+  std::vector<Vec3> dx;  // [n] m/s
+  std::vector<Vec3> dv;  // [n] m/s^2
+};
+
 }  // namespace springlab
