@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <string>
 #include <glm/gtc/type_ptr.hpp>
 
 namespace springlab::viewer {
@@ -29,52 +30,62 @@ std::pair<glm::vec3, glm::vec3> tangents(const glm::vec3& n) {
   return {t, glm::cross(n, t)};
 }
 
-// One program for everything: flat colours for lines and the grid, a two-sided headlight
-// for triangles (cloth has no inside), and round points cut out of square point sprites.
-const char* const kVertexShader = R"(#version 330 core
+// One shader source, compiled three times: flat colours for lines and the grid, a two-sided
+// headlight for triangles (cloth has no inside), and round points cut out of square point
+// sprites. Three programs rather than one with a branch on a uniform: llvmpipe (software
+// OpenGL) pays per pixel for every varying and instruction, and most pixels are flat.
+const char* const kVertexShader = R"(
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aColor;
 layout(location = 2) in vec3 aNormal;
 uniform mat4 uViewProj;
 uniform float uPointSize;
 out vec3 vColor;
+#if SHADING == 1
 out vec3 vNormal;
 out vec3 vPosition;
+#endif
 void main() {
   gl_Position = uViewProj * vec4(aPosition, 1.0);
+#if SHADING == 2
   gl_PointSize = uPointSize;
+#endif
   vColor = aColor;
+#if SHADING == 1
   vNormal = aNormal;
   vPosition = aPosition;
+#endif
 }
 )";
 
-const char* const kFragmentShader = R"(#version 330 core
+const char* const kFragmentShader = R"(
 in vec3 vColor;
+#if SHADING == 1
 in vec3 vNormal;
 in vec3 vPosition;
-uniform int uShading;
 uniform vec3 uEye;
+#endif
 out vec4 fragColor;
 void main() {
   vec3 c = vColor;
-  if (uShading == 1) {
-    vec3 n = normalize(vNormal);
-    vec3 l = normalize(uEye - vPosition);
-    c *= 0.35 + 0.65 * abs(dot(n, l));
-  } else if (uShading == 2) {
-    vec2 d = 2.0 * gl_PointCoord - 1.0;
-    float r2 = dot(d, d);
-    if (r2 > 1.0) discard;
-    c *= 1.0 - 0.35 * r2;  // a hint of a sphere
-  }
+#if SHADING == 1
+  vec3 n = normalize(vNormal);
+  vec3 l = normalize(uEye - vPosition);
+  c *= 0.35 + 0.65 * abs(dot(n, l));
+#elif SHADING == 2
+  vec2 d = 2.0 * gl_PointCoord - 1.0;
+  float r2 = dot(d, d);
+  if (r2 > 1.0) discard;
+  c *= 1.0 - 0.35 * r2;  // a hint of a sphere
+#endif
   fragColor = vec4(c, 1.0);
 }
 )";
 
-GLuint compile(GLenum type, const char* source, std::string& error) {
+GLuint compile(GLenum type, const char* header, const char* source, std::string& error) {
   const GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
+  const char* sources[2] = {header, source};
+  glShaderSource(shader, 2, sources, nullptr);
   glCompileShader(shader);
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -93,35 +104,41 @@ GLuint compile(GLenum type, const char* source, std::string& error) {
 Renderer::~Renderer() {
   if (vbo_) glDeleteBuffers(1, &vbo_);
   if (vao_) glDeleteVertexArrays(1, &vao_);
-  if (program_) glDeleteProgram(program_);
+  for (const Program& p : programs_) {
+    if (p.id) glDeleteProgram(p.id);
+  }
 }
 
 bool Renderer::init(std::string& error) {
-  const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader, error);
-  if (!vs) return false;
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader, error);
-  if (!fs) {
+  for (int shading = 0; shading < 3; ++shading) {
+    const std::string header = "#version 330 core\n#define SHADING " + std::to_string(shading) + "\n";
+    const GLuint vs = compile(GL_VERTEX_SHADER, header.c_str(), kVertexShader, error);
+    if (!vs) return false;
+    const GLuint fs = compile(GL_FRAGMENT_SHADER, header.c_str(), kFragmentShader, error);
+    if (!fs) {
+      glDeleteShader(vs);
+      return false;
+    }
+    Program& p = programs_[shading];
+    p.id = glCreateProgram();
+    glAttachShader(p.id, vs);
+    glAttachShader(p.id, fs);
+    glLinkProgram(p.id);
     glDeleteShader(vs);
-    return false;
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(p.id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      char log[2048] = {};
+      glGetProgramInfoLog(p.id, sizeof log, nullptr, log);
+      error = std::string("shader linking failed: ") + log;
+      return false;
+    }
+    // -1 for the uniforms a variant does not use: glUniform ignores those.
+    p.uViewProj = glGetUniformLocation(p.id, "uViewProj");
+    p.uPointSize = glGetUniformLocation(p.id, "uPointSize");
+    p.uEye = glGetUniformLocation(p.id, "uEye");
   }
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
-    error = std::string("shader linking failed: ") + log;
-    return false;
-  }
-  uViewProj_ = glGetUniformLocation(program_, "uViewProj");
-  uShading_ = glGetUniformLocation(program_, "uShading");
-  uPointSize_ = glGetUniformLocation(program_, "uPointSize");
-  uEye_ = glGetUniformLocation(program_, "uEye");
 
   // One streaming buffer, refilled for every draw call (a few thousand vertices at most).
   glGenVertexArrays(1, &vao_);
@@ -158,13 +175,15 @@ void Renderer::clear(int width, int height) {
 void Renderer::draw(unsigned mode, const std::vector<Vertex>& vertices, Shading shading, float pointSize,
                     const glm::mat4& viewProj, const glm::vec3& eye) {
   if (vertices.empty()) return;
-  glUseProgram(program_);
-  glUniformMatrix4fv(uViewProj_, 1, GL_FALSE, glm::value_ptr(viewProj));
-  glUniform1i(uShading_, static_cast<int>(shading));
-  glUniform1f(uPointSize_, pointSize);
-  glUniform3fv(uEye_, 1, glm::value_ptr(eye));
+  const Program& p = programs_[static_cast<int>(shading)];
+  glUseProgram(p.id);
+  glUniformMatrix4fv(p.uViewProj, 1, GL_FALSE, glm::value_ptr(viewProj));
+  glUniform1f(p.uPointSize, pointSize);
+  glUniform3fv(p.uEye, 1, glm::value_ptr(eye));
   glBindVertexArray(vao_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  // Orphan and refill: the driver hands out fresh storage while earlier draws still read the
+  // old one, so no draw waits for another.
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(),
                GL_STREAM_DRAW);
   glDrawArrays(mode, 0, static_cast<GLsizei>(vertices.size()));
