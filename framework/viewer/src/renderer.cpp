@@ -23,6 +23,30 @@ glm::vec3 springKindColor(int kind) {
   }
 }
 
+// The triangles of a unit UV sphere, their corners being their normals: made once.
+const std::vector<glm::vec3>& unitSphere() {
+  static const std::vector<glm::vec3> corners = [] {
+    // 16 x 32 quads: round at the size colliders are drawn, and a quarter of the triangles
+    // of 24 x 48 for a software renderer to set up.
+    const int rings = 16, segments = 32;
+    auto point = [&](int i, int j) {
+      const float theta = 3.14159265f * static_cast<float>(i) / static_cast<float>(rings);
+      const float phi = 6.28318531f * static_cast<float>(j) / static_cast<float>(segments);
+      return glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+    };
+    std::vector<glm::vec3> v;
+    v.reserve(6 * rings * segments);
+    for (int i = 0; i < rings; ++i) {
+      for (int j = 0; j < segments; ++j) {
+        const glm::vec3 n00 = point(i, j), n10 = point(i + 1, j), n11 = point(i + 1, j + 1), n01 = point(i, j + 1);
+        for (const glm::vec3& n : {n00, n10, n11, n00, n11, n01}) v.push_back(n);
+      }
+    }
+    return v;
+  }();
+  return corners;
+}
+
 // Two unit vectors completing n (unit) to an orthonormal frame.
 std::pair<glm::vec3, glm::vec3> tangents(const glm::vec3& n) {
   const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
@@ -197,15 +221,17 @@ void Renderer::drawGround(float height, const glm::vec2& centre, float halfSize,
   const glm::vec3 up(0.0f, 1.0f, 0.0f);
   const float x0 = centre.x - halfSize, x1 = centre.x + halfSize;
   const float z0 = centre.y - halfSize, z1 = centre.y + halfSize;
-  std::vector<Vertex> quad = {
+  std::vector<Vertex>& quad = scratch_[0];
+  quad.assign({
       {{x0, height, z0}, plane, up}, {{x1, height, z0}, plane, up}, {{x1, height, z1}, plane, up},
       {{x0, height, z0}, plane, up}, {{x1, height, z1}, plane, up}, {{x0, height, z1}, plane, up},
-  };
+  });
   draw(GL_TRIANGLES, quad, Shading::Flat, 1.0f, viewProj, glm::vec3(0.0f));
 
   const glm::vec3 line(0.34f, 0.36f, 0.40f);
   const float y = height + 1e-3f * halfSize;
-  std::vector<Vertex> grid;
+  std::vector<Vertex>& grid = scratch_[0];
+  grid.clear();
   const int n = static_cast<int>(std::floor(halfSize / spacing));
   for (int i = -n; i <= n; ++i) {
     const float x = centre.x + static_cast<float>(i) * spacing;
@@ -226,8 +252,8 @@ void Renderer::drawShadow(const Simulation& sim, float height, const glm::mat4& 
     const glm::vec3 p = toGlm(pos[i]);
     return glm::vec3(p.x, height, p.z);
   };
-  std::vector<Vertex> lines;
-  lines.reserve(2 * sim.springs.size());
+  std::vector<Vertex>& lines = scratch_[0];
+  lines.clear();
   for (const Spring& s : sim.springs) {
     if (s.mass1 < 0 || s.mass2 < 0 || static_cast<std::size_t>(std::max(s.mass1, s.mass2)) >= pos.size()) continue;
     lines.push_back({flat(s.mass1), shade, {}});
@@ -252,7 +278,8 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
   // Triangles: smooth normals (the sum of the faces around each mass), a cloth colour tinted
   // by the force colours.
   if (options.surfaces && !sim.triangles.empty()) {
-    std::vector<glm::vec3> normals(n, glm::vec3(0.0f));
+    std::vector<glm::vec3>& normals = normals_;
+    normals.assign(n, glm::vec3(0.0f));
     for (const Triangle& t : sim.triangles) {
       if (!valid(t.a) || !valid(t.b) || !valid(t.c)) continue;
       const glm::vec3 a = toGlm(pos[t.a]), b = toGlm(pos[t.b]), c = toGlm(pos[t.c]);
@@ -262,15 +289,15 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
       normals[t.c] += face;
     }
     const glm::vec3 cloth(0.55f, 0.65f, 0.85f);
-    std::vector<Vertex> tris;
-    tris.reserve(3 * sim.triangles.size());
+    for (glm::vec3& normal : normals) {
+      const float len = glm::length(normal);
+      normal = len > 0.0f ? normal / len : glm::vec3(0, 1, 0);
+    }
+    std::vector<Vertex>& tris = scratch_[0];
+    tris.clear();
     for (const Triangle& t : sim.triangles) {
       if (!valid(t.a) || !valid(t.b) || !valid(t.c)) continue;
-      for (int i : {t.a, t.b, t.c}) {
-        const float len = glm::length(normals[i]);
-        const glm::vec3 normal = len > 0.0f ? normals[i] / len : glm::vec3(0, 1, 0);
-        tris.push_back({toGlm(pos[i]), glm::mix(cloth, massColors[i], 0.3f), normal});
-      }
+      for (int i : {t.a, t.b, t.c}) tris.push_back({toGlm(pos[i]), glm::mix(cloth, massColors[i], 0.3f), normals[i]});
     }
     if (options.surfaceWireframe) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     draw(GL_TRIANGLES, tris, options.surfaceWireframe ? Shading::Flat : Shading::Lit, 1.0f, viewProj, eye);
@@ -279,8 +306,8 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
 
   // Springs, coloured by the average force colour of their ends.
   if (options.springs) {
-    std::vector<Vertex> lines;
-    lines.reserve(2 * sim.springs.size());
+    std::vector<Vertex>& lines = scratch_[0];
+    lines.clear();
     for (const Spring& s : sim.springs) {
       if (!valid(s.mass1) || !valid(s.mass2)) continue;
       const glm::vec3 c = options.springsByKind ? springKindColor(s.kind)
@@ -296,7 +323,10 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
   // Masses: free ones in their force colour, pinned ones larger and white, the grabbed one
   // yellow (drawn last, so it is on top of its neighbours).
   if (options.masses) {
-    std::vector<Vertex> free, pinned, held;
+    std::vector<Vertex>&free = scratch_[0], &pinned = scratch_[1], &held = scratch_[2];
+    free.clear();
+    pinned.clear();
+    held.clear();
     for (std::size_t i = 0; i < n; ++i) {
       if (grabbed && static_cast<std::size_t>(*grabbed) == i) {
         held.push_back({toGlm(pos[i]), glm::vec3(1.0f, 0.9f, 0.2f), {}});
@@ -314,7 +344,9 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
 
 void Renderer::drawShapes(const std::vector<Shape>& shapes, std::optional<int> held, float planeHalfSize,
                           const glm::mat4& viewProj, const glm::vec3& eye, float pixelScale) {
-  std::vector<Vertex> tris, lines;
+  std::vector<Vertex>&tris = scratch_[0], &lines = scratch_[1];
+  tris.clear();
+  lines.clear();
   for (std::size_t k = 0; k < shapes.size(); ++k) {
     const Shape& shape = shapes[k];
     const glm::vec3 color = held && static_cast<std::size_t>(*held) == k ? glm::vec3(1.0f, 0.9f, 0.2f)
@@ -324,19 +356,8 @@ void Renderer::drawShapes(const std::vector<Shape>& shapes, std::optional<int> h
     switch (shape.type) {
       case ShapeType::Sphere: {
         // A UV sphere, slightly smaller than the collider so that cloth resting on it shows.
-        const int rings = 24, segments = 48;
         const float r = 0.985f * static_cast<float>(shape.radius);
-        auto point = [&](int i, int j) {
-          const float theta = 3.14159265f * static_cast<float>(i) / static_cast<float>(rings);
-          const float phi = 6.28318531f * static_cast<float>(j) / static_cast<float>(segments);
-          return glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-        };
-        for (int i = 0; i < rings; ++i) {
-          for (int j = 0; j < segments; ++j) {
-            const glm::vec3 n00 = point(i, j), n10 = point(i + 1, j), n11 = point(i + 1, j + 1), n01 = point(i, j + 1);
-            for (const glm::vec3& n : {n00, n10, n11, n00, n11, n01}) tris.push_back({c + r * n, color, n});
-          }
-        }
+        for (const glm::vec3& n : unitSphere()) tris.push_back({c + r * n, color, n});
         break;
       }
       case ShapeType::Plane: {

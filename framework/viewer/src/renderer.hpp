@@ -71,6 +71,10 @@ class Renderer {
     int uEye = -1;
   };
   Program programs_[3];
+  // Vertices and normals built for a draw call, kept between frames so that drawing does not
+  // allocate once they have grown to the scene's size.
+  std::vector<Vertex> scratch_[3];
+  std::vector<glm::vec3> normals_;
   unsigned vao_ = 0;
   unsigned vbo_ = 0;
   float maxLineWidth_ = 1.0f;

@@ -148,8 +148,8 @@ class Viewer {
   // One frame: apply requests and held keys, step, draw.
   void interact();
   void advance();
-  void draw();
-  void drawGui();
+  void draw(bool last);
+  void drawGui(bool last);
 
   // Runs f; a missing exercise or a failing simulation is shown instead of ending the viewer.
   template <class F>
@@ -162,6 +162,8 @@ class Viewer {
   Camera camera_;
   Framing framing_;
   std::unique_ptr<viewer::Renderer> renderer_;
+  std::vector<glm::vec3> massColors_;  // this frame's force colours, kept between frames
+  std::vector<float> colorWork_;
   GLFWwindow* window_ = nullptr;
   bool imguiReady_ = false;
 
@@ -169,6 +171,14 @@ class Viewer {
   std::string runErrorHeadline_;
   std::string runError_;  // empty while the run is fine
   std::optional<double> maxAngularFrequency_;  // rad/s, cached Lanczos estimate for the dt warning
+  // The HUD's energies and observables, and the simulated time and wall time they are of.
+  struct HudNumbers {
+    double time = 0.0;
+    std::chrono::steady_clock::time_point computed;
+    Energies energies;
+    std::vector<Observable> observables;
+  };
+  std::optional<HudNumbers> hudNumbers_;
 
   Drag drag_ = Drag::None;
   double cursorX_ = 0.0, cursorY_ = 0.0;
@@ -313,10 +323,10 @@ int Viewer::run() {
     const Clock::time_point physicsStart = Clock::now();
     advance();
     const double physics = seconds(Clock::now() - physicsStart);
-    draw();
+    const bool last = options_.frames > 0 && frame >= options_.frames;
+    draw(last);
 
     // The picture is complete (scene and GUI) in the back buffer: save it before the swap.
-    const bool last = options_.frames > 0 && frame >= options_.frames;
     const Clock::time_point savingStart = Clock::now();
     glfwGetFramebufferSize(window_, &width, &height);
     if (control_.screenshotRequested) {
@@ -474,6 +484,7 @@ void Viewer::interact() {
     control_.resetRequested = false;
     guarded([&] { sim->reset(); });
     maxAngularFrequency_.reset();
+    hudNumbers_.reset();
     if (!runError_.empty()) control_.paused = false;  // R resets and continues after a blow-up
     runError_.clear();
     if (!scene_.missingAtLoad) missing_.reset();  // try the student's code again
@@ -489,6 +500,7 @@ void Viewer::interact() {
     control_.parametersEdited = false;
     guarded([&] { sim->parametersChanged(); });
     maxAngularFrequency_.reset();
+    hudNumbers_.reset();
   }
 
   // Held keys drive the fixed end; the velocity is sent only when it changes, so a scene's
@@ -543,7 +555,7 @@ void Viewer::advance() {
   });
 }
 
-void Viewer::draw() {
+void Viewer::draw(bool last) {
   int width = 0, height = 0;
   glfwGetFramebufferSize(window_, &width, &height);
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
@@ -563,11 +575,12 @@ void Viewer::draw() {
     draw.springs = !mesh || control_.wireframe;
     draw.masses = mesh ? control_.wireframe : control_.drawMasses;
     draw.springsByKind = control_.springsByKind;
-    const auto colors = viewer::forceColors(sim->force.size() == sim->state.pos.size()
-                                                ? sim->force
-                                                : std::vector<Vec3>(sim->state.pos.size(), Vec3::Zero()));
+    // Force colours where the forces are those of the current masses, else green.
+    static const std::vector<Vec3> noForces;
+    viewer::forceColors(sim->force.size() == sim->state.pos.size() ? sim->force : noForces, sim->state.pos.size(),
+                        massColors_, colorWork_);
     renderer_->drawShadow(*sim, framing_.groundHeight, viewProj, static_cast<float>(height) / 800.0f);
-    renderer_->drawSimulation(*sim, colors, sim->grabbed(), draw, viewProj, camera_.eye(),
+    renderer_->drawSimulation(*sim, massColors_, sim->grabbed(), draw, viewProj, camera_.eye(),
                               static_cast<float>(height) / 800.0f);
     try {
       renderer_->drawShapes(sim->shapes(), heldShape_, halfSize, viewProj, camera_.eye(),
@@ -577,10 +590,10 @@ void Viewer::draw() {
     }
   }
 
-  drawGui();
+  drawGui(last);
 }
 
-void Viewer::drawGui() {
+void Viewer::drawGui(bool last) {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
@@ -601,8 +614,17 @@ void Viewer::drawGui() {
     hud.time = sim->state.time;
     hud.integrator = sim->integrator().name();
     try {
-      hud.energies = sim->energies();
-      hud.observables = sim->observables();
+      // Energies and observables (the ball's volume is a sum over its triangles) ten times a
+      // second, as fast as anyone reads them; at once after a reset, an edit or a step, and
+      // on the last frame of a --frames run, whose snapshot shows them.
+      const auto now = std::chrono::steady_clock::now();
+      if (!hudNumbers_ || (sim->state.time != hudNumbers_->time &&
+                           (last || now - hudNumbers_->computed >= std::chrono::milliseconds(100) || control_.paused))) {
+        hudNumbers_.reset();  // stays empty if the next line throws
+        hudNumbers_ = HudNumbers{sim->state.time, now, sim->energies(), sim->observables()};
+      }
+      hud.energies = hudNumbers_->energies;
+      hud.observables = hudNumbers_->observables;
       // w_max from the Lanczos estimate (a few dozen force evaluations), cached until the
       // scene's parameters change or it is reset.
       if (!maxAngularFrequency_) maxAngularFrequency_ = estimatedMaxAngularFrequency(*sim);
