@@ -618,11 +618,14 @@ void Viewer::drawGui(bool last) {
       // second, as fast as anyone reads them; at once after a reset, an edit or a step, and
       // on the last frame of a --frames run, whose snapshot shows them.
       const auto now = std::chrono::steady_clock::now();
-      if (!hudNumbers_ || (sim->state.time != hudNumbers_->time &&
-                           (last || now - hudNumbers_->computed >= std::chrono::milliseconds(100) || control_.paused))) {
+      const bool due = !hudNumbers_ || (sim->state.time != hudNumbers_->time &&
+                                        (last || control_.paused ||
+                                         now - hudNumbers_->computed >= std::chrono::milliseconds(100)));
+      if (due) {
         hudNumbers_.reset();  // stays empty if the next line throws
         hudNumbers_ = HudNumbers{sim->state.time, now, sim->energies(), sim->observables()};
       }
+      hud.time = hudNumbers_->time;  // the time the numbers are of
       hud.energies = hudNumbers_->energies;
       hud.observables = hudNumbers_->observables;
       // w_max from the Lanczos estimate (a few dozen force evaluations), cached until the
