@@ -36,7 +36,8 @@ struct MissingExercise {
 };
 
 // Frames per second, and the milliseconds of a frame spent stepping the physics and on the
-// rest (drawing, GUI, waiting for the display).
+// rest (drawing and GUI beyond what is rendered while the physics runs, waiting for the
+// display).
 struct FrameRate {
   float fps = 0.0f;
   float physicsMs = 0.0f;
