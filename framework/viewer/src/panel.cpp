@@ -42,7 +42,9 @@ void drawHud(const HudInfo& hud) {
       }
     }
     ImGui::Separator();
-    ImGui::Text("%.0f frames/s", static_cast<double>(hud.fps));
+    ImGui::Text("%.0f frames/s", static_cast<double>(hud.rate.fps));
+    ImGui::Text("physics %.1f ms, drawing %.1f ms", static_cast<double>(hud.rate.physicsMs),
+                static_cast<double>(hud.rate.drawMs));
   }
   ImGui::End();
 }

@@ -35,6 +35,15 @@ struct MissingExercise {
   std::string handoutSection;
 };
 
+// Frames per second, and the milliseconds of a frame spent stepping the physics and on the
+// rest (drawing and GUI beyond what is rendered while the physics runs, waiting for the
+// display).
+struct FrameRate {
+  float fps = 0.0f;
+  float physicsMs = 0.0f;
+  float drawMs = 0.0f;
+};
+
 // Everything the HUD shows.
 struct HudInfo {
   std::string sceneName;
@@ -47,7 +56,7 @@ struct HudInfo {
   std::string integrator;
   std::optional<Energies> energies;  // nullopt when they could not be computed
   std::vector<Observable> observables;  // the scene's volume, pressure, ...
-  float fps = 0.0f;
+  FrameRate rate;
   bool paused = false;
 };
 

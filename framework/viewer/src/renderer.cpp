@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <string>
 #include <glm/gtc/type_ptr.hpp>
 
 namespace springlab::viewer {
@@ -22,6 +23,30 @@ glm::vec3 springKindColor(int kind) {
   }
 }
 
+// The triangles of a unit UV sphere, their corners being their normals: made once.
+const std::vector<glm::vec3>& unitSphere() {
+  static const std::vector<glm::vec3> corners = [] {
+    // 16 x 32 quads: round at the size colliders are drawn, and a quarter of the triangles
+    // of 24 x 48 for a software renderer to set up.
+    const int rings = 16, segments = 32;
+    auto point = [&](int i, int j) {
+      const float theta = 3.14159265f * static_cast<float>(i) / static_cast<float>(rings);
+      const float phi = 6.28318531f * static_cast<float>(j) / static_cast<float>(segments);
+      return glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+    };
+    std::vector<glm::vec3> v;
+    v.reserve(6 * rings * segments);
+    for (int i = 0; i < rings; ++i) {
+      for (int j = 0; j < segments; ++j) {
+        const glm::vec3 n00 = point(i, j), n10 = point(i + 1, j), n11 = point(i + 1, j + 1), n01 = point(i, j + 1);
+        for (const glm::vec3& n : {n00, n10, n11, n00, n11, n01}) v.push_back(n);
+      }
+    }
+    return v;
+  }();
+  return corners;
+}
+
 // Two unit vectors completing n (unit) to an orthonormal frame.
 std::pair<glm::vec3, glm::vec3> tangents(const glm::vec3& n) {
   const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
@@ -29,52 +54,62 @@ std::pair<glm::vec3, glm::vec3> tangents(const glm::vec3& n) {
   return {t, glm::cross(n, t)};
 }
 
-// One program for everything: flat colours for lines and the grid, a two-sided headlight
-// for triangles (cloth has no inside), and round points cut out of square point sprites.
-const char* const kVertexShader = R"(#version 330 core
+// One shader source, compiled three times: flat colours for lines and the grid, a two-sided
+// headlight for triangles (cloth has no inside), and round points cut out of square point
+// sprites. Three programs rather than one with a branch on a uniform: llvmpipe (software
+// OpenGL) pays per pixel for every varying and instruction, and most pixels are flat.
+const char* const kVertexShader = R"(
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aColor;
 layout(location = 2) in vec3 aNormal;
 uniform mat4 uViewProj;
 uniform float uPointSize;
 out vec3 vColor;
+#if SHADING == 1
 out vec3 vNormal;
 out vec3 vPosition;
+#endif
 void main() {
   gl_Position = uViewProj * vec4(aPosition, 1.0);
+#if SHADING == 2
   gl_PointSize = uPointSize;
+#endif
   vColor = aColor;
+#if SHADING == 1
   vNormal = aNormal;
   vPosition = aPosition;
+#endif
 }
 )";
 
-const char* const kFragmentShader = R"(#version 330 core
+const char* const kFragmentShader = R"(
 in vec3 vColor;
+#if SHADING == 1
 in vec3 vNormal;
 in vec3 vPosition;
-uniform int uShading;
 uniform vec3 uEye;
+#endif
 out vec4 fragColor;
 void main() {
   vec3 c = vColor;
-  if (uShading == 1) {
-    vec3 n = normalize(vNormal);
-    vec3 l = normalize(uEye - vPosition);
-    c *= 0.35 + 0.65 * abs(dot(n, l));
-  } else if (uShading == 2) {
-    vec2 d = 2.0 * gl_PointCoord - 1.0;
-    float r2 = dot(d, d);
-    if (r2 > 1.0) discard;
-    c *= 1.0 - 0.35 * r2;  // a hint of a sphere
-  }
+#if SHADING == 1
+  vec3 n = normalize(vNormal);
+  vec3 l = normalize(uEye - vPosition);
+  c *= 0.35 + 0.65 * abs(dot(n, l));
+#elif SHADING == 2
+  vec2 d = 2.0 * gl_PointCoord - 1.0;
+  float r2 = dot(d, d);
+  if (r2 > 1.0) discard;
+  c *= 1.0 - 0.35 * r2;  // a hint of a sphere
+#endif
   fragColor = vec4(c, 1.0);
 }
 )";
 
-GLuint compile(GLenum type, const char* source, std::string& error) {
+GLuint compile(GLenum type, const char* header, const char* source, std::string& error) {
   const GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
+  const char* sources[2] = {header, source};
+  glShaderSource(shader, 2, sources, nullptr);
   glCompileShader(shader);
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -93,35 +128,41 @@ GLuint compile(GLenum type, const char* source, std::string& error) {
 Renderer::~Renderer() {
   if (vbo_) glDeleteBuffers(1, &vbo_);
   if (vao_) glDeleteVertexArrays(1, &vao_);
-  if (program_) glDeleteProgram(program_);
+  for (const Program& p : programs_) {
+    if (p.id) glDeleteProgram(p.id);
+  }
 }
 
 bool Renderer::init(std::string& error) {
-  const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader, error);
-  if (!vs) return false;
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader, error);
-  if (!fs) {
+  for (int shading = 0; shading < 3; ++shading) {
+    const std::string header = "#version 330 core\n#define SHADING " + std::to_string(shading) + "\n";
+    const GLuint vs = compile(GL_VERTEX_SHADER, header.c_str(), kVertexShader, error);
+    if (!vs) return false;
+    const GLuint fs = compile(GL_FRAGMENT_SHADER, header.c_str(), kFragmentShader, error);
+    if (!fs) {
+      glDeleteShader(vs);
+      return false;
+    }
+    Program& p = programs_[shading];
+    p.id = glCreateProgram();
+    glAttachShader(p.id, vs);
+    glAttachShader(p.id, fs);
+    glLinkProgram(p.id);
     glDeleteShader(vs);
-    return false;
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(p.id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      char log[2048] = {};
+      glGetProgramInfoLog(p.id, sizeof log, nullptr, log);
+      error = std::string("shader linking failed: ") + log;
+      return false;
+    }
+    // -1 for the uniforms a variant does not use: glUniform ignores those.
+    p.uViewProj = glGetUniformLocation(p.id, "uViewProj");
+    p.uPointSize = glGetUniformLocation(p.id, "uPointSize");
+    p.uEye = glGetUniformLocation(p.id, "uEye");
   }
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
-    error = std::string("shader linking failed: ") + log;
-    return false;
-  }
-  uViewProj_ = glGetUniformLocation(program_, "uViewProj");
-  uShading_ = glGetUniformLocation(program_, "uShading");
-  uPointSize_ = glGetUniformLocation(program_, "uPointSize");
-  uEye_ = glGetUniformLocation(program_, "uEye");
 
   // One streaming buffer, refilled for every draw call (a few thousand vertices at most).
   glGenVertexArrays(1, &vao_);
@@ -158,13 +199,15 @@ void Renderer::clear(int width, int height) {
 void Renderer::draw(unsigned mode, const std::vector<Vertex>& vertices, Shading shading, float pointSize,
                     const glm::mat4& viewProj, const glm::vec3& eye) {
   if (vertices.empty()) return;
-  glUseProgram(program_);
-  glUniformMatrix4fv(uViewProj_, 1, GL_FALSE, glm::value_ptr(viewProj));
-  glUniform1i(uShading_, static_cast<int>(shading));
-  glUniform1f(uPointSize_, pointSize);
-  glUniform3fv(uEye_, 1, glm::value_ptr(eye));
+  const Program& p = programs_[static_cast<int>(shading)];
+  glUseProgram(p.id);
+  glUniformMatrix4fv(p.uViewProj, 1, GL_FALSE, glm::value_ptr(viewProj));
+  glUniform1f(p.uPointSize, pointSize);
+  glUniform3fv(p.uEye, 1, glm::value_ptr(eye));
   glBindVertexArray(vao_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  // Orphan and refill: the driver hands out fresh storage while earlier draws still read the
+  // old one, so no draw waits for another.
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(),
                GL_STREAM_DRAW);
   glDrawArrays(mode, 0, static_cast<GLsizei>(vertices.size()));
@@ -178,15 +221,17 @@ void Renderer::drawGround(float height, const glm::vec2& centre, float halfSize,
   const glm::vec3 up(0.0f, 1.0f, 0.0f);
   const float x0 = centre.x - halfSize, x1 = centre.x + halfSize;
   const float z0 = centre.y - halfSize, z1 = centre.y + halfSize;
-  std::vector<Vertex> quad = {
+  std::vector<Vertex>& quad = scratch_[0];
+  quad.assign({
       {{x0, height, z0}, plane, up}, {{x1, height, z0}, plane, up}, {{x1, height, z1}, plane, up},
       {{x0, height, z0}, plane, up}, {{x1, height, z1}, plane, up}, {{x0, height, z1}, plane, up},
-  };
+  });
   draw(GL_TRIANGLES, quad, Shading::Flat, 1.0f, viewProj, glm::vec3(0.0f));
 
   const glm::vec3 line(0.34f, 0.36f, 0.40f);
   const float y = height + 1e-3f * halfSize;
-  std::vector<Vertex> grid;
+  std::vector<Vertex>& grid = scratch_[0];
+  grid.clear();
   const int n = static_cast<int>(std::floor(halfSize / spacing));
   for (int i = -n; i <= n; ++i) {
     const float x = centre.x + static_cast<float>(i) * spacing;
@@ -207,8 +252,8 @@ void Renderer::drawShadow(const Simulation& sim, float height, const glm::mat4& 
     const glm::vec3 p = toGlm(pos[i]);
     return glm::vec3(p.x, height, p.z);
   };
-  std::vector<Vertex> lines;
-  lines.reserve(2 * sim.springs.size());
+  std::vector<Vertex>& lines = scratch_[0];
+  lines.clear();
   for (const Spring& s : sim.springs) {
     if (s.mass1 < 0 || s.mass2 < 0 || static_cast<std::size_t>(std::max(s.mass1, s.mass2)) >= pos.size()) continue;
     lines.push_back({flat(s.mass1), shade, {}});
@@ -233,7 +278,8 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
   // Triangles: smooth normals (the sum of the faces around each mass), a cloth colour tinted
   // by the force colours.
   if (options.surfaces && !sim.triangles.empty()) {
-    std::vector<glm::vec3> normals(n, glm::vec3(0.0f));
+    std::vector<glm::vec3>& normals = normals_;
+    normals.assign(n, glm::vec3(0.0f));
     for (const Triangle& t : sim.triangles) {
       if (!valid(t.a) || !valid(t.b) || !valid(t.c)) continue;
       const glm::vec3 a = toGlm(pos[t.a]), b = toGlm(pos[t.b]), c = toGlm(pos[t.c]);
@@ -243,15 +289,15 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
       normals[t.c] += face;
     }
     const glm::vec3 cloth(0.55f, 0.65f, 0.85f);
-    std::vector<Vertex> tris;
-    tris.reserve(3 * sim.triangles.size());
+    for (glm::vec3& normal : normals) {
+      const float len = glm::length(normal);
+      normal = len > 0.0f ? normal / len : glm::vec3(0, 1, 0);
+    }
+    std::vector<Vertex>& tris = scratch_[0];
+    tris.clear();
     for (const Triangle& t : sim.triangles) {
       if (!valid(t.a) || !valid(t.b) || !valid(t.c)) continue;
-      for (int i : {t.a, t.b, t.c}) {
-        const float len = glm::length(normals[i]);
-        const glm::vec3 normal = len > 0.0f ? normals[i] / len : glm::vec3(0, 1, 0);
-        tris.push_back({toGlm(pos[i]), glm::mix(cloth, massColors[i], 0.3f), normal});
-      }
+      for (int i : {t.a, t.b, t.c}) tris.push_back({toGlm(pos[i]), glm::mix(cloth, massColors[i], 0.3f), normals[i]});
     }
     if (options.surfaceWireframe) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     draw(GL_TRIANGLES, tris, options.surfaceWireframe ? Shading::Flat : Shading::Lit, 1.0f, viewProj, eye);
@@ -260,8 +306,8 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
 
   // Springs, coloured by the average force colour of their ends.
   if (options.springs) {
-    std::vector<Vertex> lines;
-    lines.reserve(2 * sim.springs.size());
+    std::vector<Vertex>& lines = scratch_[0];
+    lines.clear();
     for (const Spring& s : sim.springs) {
       if (!valid(s.mass1) || !valid(s.mass2)) continue;
       const glm::vec3 c = options.springsByKind ? springKindColor(s.kind)
@@ -277,7 +323,10 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
   // Masses: free ones in their force colour, pinned ones larger and white, the grabbed one
   // yellow (drawn last, so it is on top of its neighbours).
   if (options.masses) {
-    std::vector<Vertex> free, pinned, held;
+    std::vector<Vertex>&free = scratch_[0], &pinned = scratch_[1], &held = scratch_[2];
+    free.clear();
+    pinned.clear();
+    held.clear();
     for (std::size_t i = 0; i < n; ++i) {
       if (grabbed && static_cast<std::size_t>(*grabbed) == i) {
         held.push_back({toGlm(pos[i]), glm::vec3(1.0f, 0.9f, 0.2f), {}});
@@ -295,7 +344,9 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
 
 void Renderer::drawShapes(const std::vector<Shape>& shapes, std::optional<int> held, float planeHalfSize,
                           const glm::mat4& viewProj, const glm::vec3& eye, float pixelScale) {
-  std::vector<Vertex> tris, lines;
+  std::vector<Vertex>&tris = scratch_[0], &lines = scratch_[1];
+  tris.clear();
+  lines.clear();
   for (std::size_t k = 0; k < shapes.size(); ++k) {
     const Shape& shape = shapes[k];
     const glm::vec3 color = held && static_cast<std::size_t>(*held) == k ? glm::vec3(1.0f, 0.9f, 0.2f)
@@ -305,19 +356,8 @@ void Renderer::drawShapes(const std::vector<Shape>& shapes, std::optional<int> h
     switch (shape.type) {
       case ShapeType::Sphere: {
         // A UV sphere, slightly smaller than the collider so that cloth resting on it shows.
-        const int rings = 24, segments = 48;
         const float r = 0.985f * static_cast<float>(shape.radius);
-        auto point = [&](int i, int j) {
-          const float theta = 3.14159265f * static_cast<float>(i) / static_cast<float>(rings);
-          const float phi = 6.28318531f * static_cast<float>(j) / static_cast<float>(segments);
-          return glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-        };
-        for (int i = 0; i < rings; ++i) {
-          for (int j = 0; j < segments; ++j) {
-            const glm::vec3 n00 = point(i, j), n10 = point(i + 1, j), n11 = point(i + 1, j + 1), n01 = point(i, j + 1);
-            for (const glm::vec3& n : {n00, n10, n11, n00, n11, n01}) tris.push_back({c + r * n, color, n});
-          }
-        }
+        for (const glm::vec3& n : unitSphere()) tris.push_back({c + r * n, color, n});
         break;
       }
       case ShapeType::Plane: {

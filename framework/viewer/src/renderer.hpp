@@ -63,13 +63,20 @@ class Renderer {
   void draw(unsigned mode, const std::vector<Vertex>& vertices, Shading shading, float pointSize,
             const glm::mat4& viewProj, const glm::vec3& eye);
 
-  unsigned program_ = 0;
+  // One program per Shading, the same source with SHADING defined to its number.
+  struct Program {
+    unsigned id = 0;
+    int uViewProj = -1;
+    int uPointSize = -1;
+    int uEye = -1;
+  };
+  Program programs_[3];
+  // Vertices and normals built for a draw call, kept between frames so that drawing does not
+  // allocate once they have grown to the scene's size.
+  std::vector<Vertex> scratch_[3];
+  std::vector<glm::vec3> normals_;
   unsigned vao_ = 0;
   unsigned vbo_ = 0;
-  int uViewProj_ = -1;
-  int uShading_ = -1;
-  int uPointSize_ = -1;
-  int uEye_ = -1;
   float maxLineWidth_ = 1.0f;
 };
 
