@@ -42,7 +42,8 @@ TEST(NetResolution, KeepsTheTotalMassOfAPerParticleNet) {
   SceneDocument net = shippedScene("net_hanging.json");
   auto totalMass = [](const SceneDocument& d) {
     double m = 0.0;
-    for (const Mass& mass : allLabs().loadScene(d).sim->masses) m += mass.m;
+    const LoadedScene scene = allLabs().loadScene(d);  // alive while the loop reads its masses
+    for (const Mass& mass : scene.sim->masses) m += mass.m;
     return m;
   };
   const double total = totalMass(net);
