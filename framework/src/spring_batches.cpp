@@ -6,18 +6,29 @@
 
 namespace springlab {
 
-SpringBatches::SpringBatches(const std::vector<Spring>& springs, int minimumSpan) {
+namespace {
+std::vector<std::array<int, 2>> endsOf(const std::vector<Spring>& springs) {
+  std::vector<std::array<int, 2>> ends(springs.size());
+  for (std::size_t k = 0; k < springs.size(); ++k) ends[k] = {springs[k].mass1, springs[k].mass2};
+  return ends;
+}
+}  // namespace
+
+SpringBatches::SpringBatches(const std::vector<Spring>& springs, int minimumSpan)
+    : SpringBatches(endsOf(springs), minimumSpan) {}
+
+SpringBatches::SpringBatches(const std::vector<std::array<int, 2>>& springs, int minimumSpan) {  // springs: their ends
   // The largest index distance a spring spans sets the window width; a little slack lets
   // the lower index step back by a few masses (a grid cell lists its springs by corner).
   int span = 1;
-  for (const Spring& s : springs) span = std::max(span, std::abs(s.mass2 - s.mass1));
+  for (const auto& [a, b] : springs) span = std::max(span, std::abs(b - a));
   const int width = std::max(span + 4, minimumSpan);
 
   // A new batch wherever the running maximum of the lower index enters the next window.
   begin_.assign(1, 0);
   int highestLow = -1;
   for (std::size_t k = 0; k < springs.size(); ++k) {
-    const int low = std::min(springs[k].mass1, springs[k].mass2);
+    const int low = std::min(springs[k][0], springs[k][1]);
     if (k > 0 && std::max(highestLow, low) / width != highestLow / width) begin_.push_back(static_cast<int>(k));
     highestLow = std::max(highestLow, low);
   }
@@ -30,9 +41,9 @@ SpringBatches::SpringBatches(const std::vector<Spring>& springs, int minimumSpan
   for (int b = 0; b < batches; ++b) {
     int lo = std::numeric_limits<int>::max(), hi = -1;
     for (int k = begin(b); k < end(b); ++k) {
-      const Spring& s = springs[static_cast<std::size_t>(k)];
-      lo = std::min({lo, s.mass1, s.mass2});
-      hi = std::max({hi, s.mass1, s.mass2});
+      const auto& [a, c] = springs[static_cast<std::size_t>(k)];
+      lo = std::min({lo, a, c});
+      hi = std::max({hi, a, c});
     }
     lowest[static_cast<std::size_t>(b)] = lo;
     highest[static_cast<std::size_t>(b)] = hi;

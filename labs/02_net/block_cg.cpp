@@ -12,7 +12,6 @@ void BlockJacobiCG::precondition(const Eigen::VectorXd& in, Eigen::VectorXd& out
 }
 
 int BlockJacobiCG::solve(const BlockSystem& system, Eigen::VectorXd& x) {
-  const BlockSystem::Matrix& A = system.matrix();
   const Eigen::VectorXd& b = system.rhs();
   const Eigen::Index rows = b.size();
   if (x.size() != rows) x.setZero(rows);
@@ -34,7 +33,7 @@ int BlockJacobiCG::solve(const BlockSystem& system, Eigen::VectorXd& x) {
   z_.resize(rows);
   p_.resize(rows);
   q_.resize(rows);
-  q_.noalias() = A * x;
+  system.multiply(x, q_);
   r_ = b - q_;
   const double stop2 = tolerance * tolerance * bNorm2;
   const int maxIterations = static_cast<int>(2 * rows);
@@ -43,7 +42,7 @@ int BlockJacobiCG::solve(const BlockSystem& system, Eigen::VectorXd& x) {
   double rz = r_.dot(z_);
   int iterations = 0;
   while (r_.squaredNorm() > stop2 && iterations < maxIterations) {
-    q_.noalias() = A * p_;
+    system.multiply(p_, q_);
     const double alpha = rz / p_.dot(q_);
     x += alpha * p_;
     r_ -= alpha * q_;

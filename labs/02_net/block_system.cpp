@@ -1,6 +1,5 @@
-// The linear system of an implicit step in 3x3 blocks (given). The sparsity pattern is
-// built once from the free masses and the Jacobian's pairs; later steps only refill values.
-#include <algorithm>
+// The linear system of an implicit step in 3x3 blocks (given). The layout is built once from
+// the free masses and the Jacobian's pairs; later steps only refill values.
 #include <stdexcept>
 
 #include "net.hpp"
@@ -8,12 +7,12 @@
 namespace springlab::net {
 
 void BlockSystem::prepare(const std::vector<char>& free, const ForceJacobian& J) {
-  // Same masses and couplings as last time: keep the pattern, zero the values.
+  // Same masses and couplings as last time: keep the layout, zero the values.
   bool same = free == patternFree_ && J.pairs.size() == patternPairs_.size();
   for (std::size_t k = 0; same && k < J.pairs.size(); ++k) {
     same = J.pairs[k].i == patternPairs_[k].first && J.pairs[k].j == patternPairs_[k].second;
   }
-  if (same && a_.rows() == b_.size()) {
+  if (same && !row_.empty()) {
     setZero();
     return;
   }
@@ -29,79 +28,38 @@ void BlockSystem::prepare(const std::vector<char>& free, const ForceJacobian& J)
     if (free[i]) row_[i] = 3 * blocks++;
   }
 
-  // Block columns of each block row: the diagonal and every pair with both ends free.
-  std::vector<std::vector<int>> columns(static_cast<std::size_t>(blocks));
-  for (int r = 0; r < blocks; ++r) columns[static_cast<std::size_t>(r)].push_back(r);
-  for (const auto& [i, j] : patternPairs_) {
+  // A pair couples two different free masses, or nothing.
+  pairRows_.resize(patternPairs_.size());
+  std::vector<std::array<int, 2>> ends(patternPairs_.size());
+  for (std::size_t k = 0; k < patternPairs_.size(); ++k) {
+    const auto [i, j] = patternPairs_[k];
     if (i < 0 || j < 0 || static_cast<std::size_t>(i) >= n || static_cast<std::size_t>(j) >= n) {
       throw std::out_of_range("BlockSystem: a Jacobian pair names a mass that does not exist");
     }
     const int ri = row_[static_cast<std::size_t>(i)], rj = row_[static_cast<std::size_t>(j)];
-    if (ri < 0 || rj < 0 || ri == rj) continue;
-    columns[static_cast<std::size_t>(ri / 3)].push_back(rj / 3);
-    columns[static_cast<std::size_t>(rj / 3)].push_back(ri / 3);
+    pairRows_[k] = ri < 0 || rj < 0 || ri == rj ? std::array<int, 2>{-1, -1} : std::array<int, 2>{ri, rj};
+    ends[k] = {i, j};
   }
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int r = 0; r < blocks; ++r) {
-    auto& c = columns[static_cast<std::size_t>(r)];
-    std::sort(c.begin(), c.end());
-    c.erase(std::unique(c.begin(), c.end()), c.end());
-    for (int col : c) {
-      for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) entries.emplace_back(3 * r + a, 3 * col + b, 0.0);
-      }
-    }
-  }
-
-  // The matrix with explicit zeros everywhere in the pattern, rows sorted by column.
-  a_.resize(3 * blocks, 3 * blocks);
-  a_.setFromTriplets(entries.begin(), entries.end());
-  a_.makeCompressed();
-  b_.setZero(3 * blocks);
-
-  // Where each block's values live: row a of block (r, c) starts at base + a * stride.
-  diagonal_.assign(n, Slot{});
-  for (std::size_t i = 0; i < n; ++i) {
-    if (row_[i] >= 0) diagonal_[i] = slotOf(row_[i] / 3, row_[i] / 3);
-  }
-  pair_.assign(patternPairs_.size(), {Slot{}, Slot{}});
-  for (std::size_t k = 0; k < patternPairs_.size(); ++k) {
-    const int ri = row_[static_cast<std::size_t>(patternPairs_[k].first)];
-    const int rj = row_[static_cast<std::size_t>(patternPairs_[k].second)];
-    if (ri < 0 || rj < 0 || ri == rj) continue;
-    pair_[k] = {slotOf(ri / 3, rj / 3), slotOf(rj / 3, ri / 3)};
-  }
-}
-
-BlockSystem::Slot BlockSystem::slotOf(int rowBlock, int columnBlock) const {
-  // Every scalar row of a block row has the same columns, sorted; find the block's first.
-  const int* outer = a_.outerIndexPtr();
-  const int* inner = a_.innerIndexPtr();
-  const int begin = outer[3 * rowBlock], end = outer[3 * rowBlock + 1];
-  const int* at = std::lower_bound(inner + begin, inner + end, 3 * columnBlock);
-  if (at == inner + end || *at != 3 * columnBlock) return Slot{};
-  return Slot{static_cast<int>(at - inner), end - begin};
+  batches_ = SpringBatches(ends);
+  diagonal_.resize(static_cast<std::size_t>(blocks));
+  coupling_.resize(patternPairs_.size());
+  b_.resize(3 * blocks);
+  setZero();
 }
 
 void BlockSystem::setZero() {
-  std::fill(a_.valuePtr(), a_.valuePtr() + a_.nonZeros(), 0.0);
+  std::fill(diagonal_.begin(), diagonal_.end(), Mat3::Zero());
+  std::fill(coupling_.begin(), coupling_.end(), Mat3::Zero());
   b_.setZero();
 }
 
-void BlockSystem::addAt(const Slot& slot, const Mat3& block) {
-  if (slot.base < 0) return;
-  double* value = a_.valuePtr() + slot.base;
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) value[a * slot.stride + b] += block(a, b);
-  }
+void BlockSystem::addToDiagonal(int i, const Mat3& block) {
+  const int r = row_[static_cast<std::size_t>(i)];
+  if (r >= 0) diagonal_[static_cast<std::size_t>(r / 3)] += block;
 }
 
-void BlockSystem::addToDiagonal(int i, const Mat3& block) { addAt(diagonal_[static_cast<std::size_t>(i)], block); }
-
 void BlockSystem::addToPair(int k, const Mat3& block) {
-  const auto& slots = pair_[static_cast<std::size_t>(k)];
-  addAt(slots[0], block);
-  addAt(slots[1], block);
+  if (pairRows_[static_cast<std::size_t>(k)][0] >= 0) coupling_[static_cast<std::size_t>(k)] += block;
 }
 
 void BlockSystem::addToRhs(int i, const Vec3& r) {
@@ -109,26 +67,55 @@ void BlockSystem::addToRhs(int i, const Vec3& r) {
   if (first >= 0) b_.segment<3>(first) += r;
 }
 
+void BlockSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  // The diagonal blocks, each row on its own; then the pairs, each adding to both its rows.
+  y.resize(b_.size());
+  const int blocks = static_cast<int>(diagonal_.size());
+#pragma omp parallel for schedule(static) if (blocks > 4096)
+  for (int r = 0; r < blocks; ++r) y.segment<3>(3 * r) = diagonal_[static_cast<std::size_t>(r)] * x.segment<3>(3 * r);
+  batches_.forEach([&](int k) {
+    const auto [ri, rj] = pairRows_[static_cast<std::size_t>(k)];
+    if (ri < 0) return;
+    const Mat3& c = coupling_[static_cast<std::size_t>(k)];
+    y.segment<3>(ri) += c * x.segment<3>(rj);
+    y.segment<3>(rj) += c * x.segment<3>(ri);
+  });
+}
+
+BlockSystem::Matrix BlockSystem::matrix() const {
+  std::vector<Eigen::Triplet<double>> entries;
+  auto add = [&](int r, int c, const Mat3& block) {
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) entries.emplace_back(r + a, c + b, block(a, b));
+    }
+  };
+  for (std::size_t r = 0; r < diagonal_.size(); ++r) add(3 * static_cast<int>(r), 3 * static_cast<int>(r), diagonal_[r]);
+  for (std::size_t k = 0; k < pairRows_.size(); ++k) {
+    const auto [ri, rj] = pairRows_[k];
+    if (ri < 0) continue;
+    add(ri, rj, coupling_[k]);
+    add(rj, ri, coupling_[k]);
+  }
+  Matrix a(size(), size());
+  a.setFromTriplets(entries.begin(), entries.end());  // duplicates add up
+  return a;
+}
+
 Mat3 BlockSystem::block(int i, int j) const {
   const int ri = row_[static_cast<std::size_t>(i)], rj = row_[static_cast<std::size_t>(j)];
+  if (ri < 0 || rj < 0) return Mat3::Zero();
+  if (ri == rj) return diagonal_[static_cast<std::size_t>(ri / 3)];
   Mat3 out = Mat3::Zero();
-  if (ri < 0 || rj < 0) return out;
-  const Slot slot = slotOf(ri / 3, rj / 3);
-  if (slot.base < 0) return out;
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) out(a, b) = a_.valuePtr()[slot.base + a * slot.stride + b];
+  for (std::size_t k = 0; k < pairRows_.size(); ++k) {
+    const auto [a, b] = pairRows_[k];
+    if ((a == ri && b == rj) || (a == rj && b == ri)) out += coupling_[k];
   }
   return out;
 }
 
 Mat3 BlockSystem::diagonalBlock(int i) const {
-  const Slot& slot = diagonal_[static_cast<std::size_t>(i)];
-  Mat3 out = Mat3::Zero();
-  if (slot.base < 0) return out;
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) out(a, b) = a_.valuePtr()[slot.base + a * slot.stride + b];
-  }
-  return out;
+  const int r = row_[static_cast<std::size_t>(i)];
+  return r >= 0 ? diagonal_[static_cast<std::size_t>(r / 3)] : Mat3::Zero();
 }
 
 Vec3 BlockSystem::rhsOf(int i) const {

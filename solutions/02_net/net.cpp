@@ -57,12 +57,24 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
 [[gnu::flatten]] void Net::accumulateForces(const State& s, std::vector<Vec3>& f) {
   // Springs: equal and opposite on their ends (exercise 2.2).
   if (!batches_.fits(springs.size())) batches_ = SpringBatches(springs);
-  batches_.forEach([&](int k) {
-    const Spring& sp = springs[static_cast<std::size_t>(k)];
-    const Vec3 f1 = springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
-                                      sp.springConstant, sp.springLength, sp.frictionConstant);
-    f[sp.mass1] += f1;
-    f[sp.mass2] -= f1;
+  // A grid lists up to six springs of one first mass in a row: their forces on it add up in
+  // a register and land once, instead of six dependent read-add-writes of f[mass1].
+  batches_.forEachBatch([&](int first, int last) {
+    int pending = -1;  // the first mass whose sum is held in `sum`
+    Vec3 sum = Vec3::Zero();
+    for (int k = first; k < last; ++k) {
+      const Spring& sp = springs[static_cast<std::size_t>(k)];
+      const Vec3 f1 = springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
+                                        sp.springConstant, sp.springLength, sp.frictionConstant);
+      if (sp.mass1 != pending) {
+        if (pending >= 0) f[pending] += sum;
+        pending = sp.mass1;
+        sum.setZero();
+      }
+      sum += f1;
+      f[sp.mass2] -= f1;
+    }
+    if (pending >= 0) f[pending] += sum;
   });
   // Gravity and air friction on each mass.
   const int n = numOfMasses();

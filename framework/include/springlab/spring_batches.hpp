@@ -6,6 +6,7 @@
 // apart share no mass: all even batches run at once, then all odd ones. Every mass receives
 // its springs' forces in the same order however many threads run, so sums are bitwise equal.
 // A spring list in any other order gets one batch (a serial loop), which is still correct.
+#include <array>
 #include <vector>
 
 #include "springlab/spring.hpp"
@@ -17,6 +18,8 @@ class SpringBatches {
   SpringBatches() = default;
   // Batches for `springs` over `masses` masses; at least `minimumSpan` lower indices each.
   explicit SpringBatches(const std::vector<Spring>& springs, int minimumSpan = 64);
+  // The same for any list of index pairs (a Jacobian's pairs, say).
+  explicit SpringBatches(const std::vector<std::array<int, 2>>& ends, int minimumSpan = 64);
 
   int count() const { return static_cast<int>(begin_.size()) - 1; }
   // Springs [begin(b), end(b)) form batch b.
@@ -29,12 +32,17 @@ class SpringBatches {
   // add to both ends' entries of per-mass arrays.
   template <class PerSpring>
   void forEach(PerSpring&& perSpring) const {
+    forEachBatch([&](int first, int last) {
+      for (int k = first; k < last; ++k) perSpring(k);
+    });
+  }
+  // perBatch(first, last) for the springs [first, last) of every batch, as forEach.
+  template <class PerBatch>
+  void forEachBatch(PerBatch&& perBatch) const {
     const int batches = count();
     for (int parity = 0; parity < 2; ++parity) {
 #pragma omp parallel for schedule(static) if (batches > 2)
-      for (int b = parity; b < batches; b += 2) {
-        for (int k = begin(b); k < end(b); ++k) perSpring(k);
-      }
+      for (int b = parity; b < batches; b += 2) perBatch(begin(b), end(b));
     }
   }
 
