@@ -53,32 +53,30 @@ void BlockSystem::setZero() {
   b_.setZero();
 }
 
-void BlockSystem::addToDiagonal(int i, const Mat3& block) {
-  const int r = row_[static_cast<std::size_t>(i)];
-  if (r >= 0) diagonal_[static_cast<std::size_t>(r / 3)] += block;
-}
-
-void BlockSystem::addToPair(int k, const Mat3& block) {
-  if (pairRows_[static_cast<std::size_t>(k)][0] >= 0) coupling_[static_cast<std::size_t>(k)] += block;
-}
-
-void BlockSystem::addToRhs(int i, const Vec3& r) {
-  const int first = row_[static_cast<std::size_t>(i)];
-  if (first >= 0) b_.segment<3>(first) += r;
-}
-
 void BlockSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   // The diagonal blocks, each row on its own; then the pairs, each adding to both its rows.
   y.resize(b_.size());
   const int blocks = static_cast<int>(diagonal_.size());
 #pragma omp parallel for schedule(static) if (blocks > 4096)
   for (int r = 0; r < blocks; ++r) y.segment<3>(3 * r) = diagonal_[static_cast<std::size_t>(r)] * x.segment<3>(3 * r);
-  batches_.forEach([&](int k) {
-    const auto [ri, rj] = pairRows_[static_cast<std::size_t>(k)];
-    if (ri < 0) return;
-    const Mat3& c = coupling_[static_cast<std::size_t>(k)];
-    y.segment<3>(ri) += c * x.segment<3>(rj);
-    y.segment<3>(rj) += c * x.segment<3>(ri);
+  // Consecutive pairs mostly share their first row: its sum stays in a register until the
+  // row changes (as in the cloth's force pass).
+  batches_.forEachBatch([&](int first, int last) {
+    int pending = -1;
+    Vec3 sum = Vec3::Zero();
+    for (int k = first; k < last; ++k) {
+      const auto [ri, rj] = pairRows_[static_cast<std::size_t>(k)];
+      if (ri < 0) continue;
+      const Mat3& c = coupling_[static_cast<std::size_t>(k)];
+      if (ri != pending) {
+        if (pending >= 0) y.segment<3>(pending) += sum;
+        pending = ri;
+        sum.setZero();
+      }
+      sum += c * x.segment<3>(rj);
+      y.segment<3>(rj) += c * x.segment<3>(ri);
+    }
+    if (pending >= 0) y.segment<3>(pending) += sum;
   });
 }
 

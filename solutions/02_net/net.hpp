@@ -184,9 +184,20 @@ class BlockSystem {
   void prepare(const std::vector<char>& free, const ForceJacobian& J);
   void setZero();
 
-  void addToDiagonal(int i, const Mat3& block);  // A_ii += block
-  void addToPair(int k, const Mat3& block);      // A_ij += block and A_ji += block, (i, j) = J.pairs[k]
-  void addToRhs(int i, const Vec3& r);           // b_i += r
+  // A_ii += block
+  void addToDiagonal(int i, const Mat3& block) {
+    const int r = row_[static_cast<std::size_t>(i)];
+    if (r >= 0) diagonal_[static_cast<std::size_t>(r / 3)] += block;
+  }
+  // A_ij += block and A_ji += block, (i, j) = J.pairs[k]
+  void addToPair(int k, const Mat3& block) {
+    if (pairRows_[static_cast<std::size_t>(k)][0] >= 0) coupling_[static_cast<std::size_t>(k)] += block;
+  }
+  // b_i += r
+  void addToRhs(int i, const Vec3& r) {
+    const int first = row_[static_cast<std::size_t>(i)];
+    if (first >= 0) b_.segment<3>(first) += r;
+  }
 
   int row(int i) const { return row_[static_cast<std::size_t>(i)]; }  // first row of mass i, or -1
   int size() const { return static_cast<int>(b_.size()); }            // rows = 3 x free masses
