@@ -151,7 +151,10 @@ def run_sandboxed(argv, sandbox, env_extra=None, nonce=None, cwd=None):
             work = pathlib.Path(cwd)
         log = open(pathlib.Path(private) / "output.txt", "w+b")
         home = pathlib.Path(private) / "cwd"
-        env = {"PATH": "/usr/bin:/bin", "HOME": str(home), "LANG": "C.UTF-8", "TMPDIR": str(home)}
+        # One thread per test: the grader runs tests side by side, and OpenMP threads that
+        # wait for a busy core would only make each test slower.
+        env = {"PATH": "/usr/bin:/bin", "HOME": str(home), "LANG": "C.UTF-8", "TMPDIR": str(home),
+               "OMP_NUM_THREADS": "1"}
         env.update(env_extra or {})
         fds = ()
         if nonce is not None:

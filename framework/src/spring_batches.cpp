@@ -56,6 +56,7 @@ SpringBatches::SpringBatches(const std::vector<std::array<int, 2>>& springs, int
       return;
     }
   }
+  parallel_ = batches > 2 && springs.size() >= static_cast<std::size_t>(kParallelSprings);
 }
 
 }  // namespace springlab

@@ -22,6 +22,9 @@ class SpringBatches {
   explicit SpringBatches(const std::vector<std::array<int, 2>>& ends, int minimumSpan = 64);
 
   int count() const { return static_cast<int>(begin_.size()) - 1; }
+  // Whether forEach uses threads: enough batches, and enough springs to pay for waking them.
+  bool parallel() const { return parallel_; }
+  static constexpr int kParallelSprings = 8192;
   // Springs [begin(b), end(b)) form batch b.
   int begin(int b) const { return begin_[static_cast<std::size_t>(b)]; }
   int end(int b) const { return begin_[static_cast<std::size_t>(b) + 1]; }
@@ -41,13 +44,14 @@ class SpringBatches {
   void forEachBatch(PerBatch&& perBatch) const {
     const int batches = count();
     for (int parity = 0; parity < 2; ++parity) {
-#pragma omp parallel for schedule(static) if (batches > 2)
+#pragma omp parallel for schedule(static) if (parallel_)
       for (int b = parity; b < batches; b += 2) perBatch(begin(b), end(b));
     }
   }
 
  private:
   std::vector<int> begin_{0};  // [batches + 1]
+  bool parallel_ = false;
 };
 
 }  // namespace springlab
