@@ -1,6 +1,6 @@
 #pragma once
 // What the benchmarks share: the scenes they time, the thread count, and per-step counters.
-// Everything here builds on the reference solutions; see bench/README in README.md's
+// Everything here builds on the reference solutions; README.md's
 // "Performance" section for the table `./springlab bench` prints from these benchmarks.
 #include <benchmark/benchmark.h>
 

@@ -129,7 +129,7 @@ def report(context, runs):
                          fmt(ms(ib)) if ib else "–",
                          fmt(1000.0 / ms(ie)) if ie else "–"])
         lines.append(table(["r", "material", "threads", "symplectic Euler", "implicit, sparse CG", "CG iterations",
-                            "of which solve + assembly", "implicit, blocks", "sparse steps/s"], rows))
+                            "of which Jacobians, assembly, CG", "implicit, blocks", "sparse steps/s"], rows))
         lines.append("")
 
     # ---- the thesis frame

@@ -7,6 +7,7 @@ blows up says so and exits 4; a missing exercise exits 3 and names it.
 """
 import json
 import pathlib
+import re
 import subprocess
 import sys
 import tempfile
@@ -69,6 +70,15 @@ with tempfile.TemporaryDirectory() as tmp:
            4, "blew up", "dt must stay below")
     expect("skeleton", run(student, "sim", str(scenes / "rope.json"), "--steps", "10", "--out", out), 3,
            "not implemented: exercise 1.7")
+
+# sim --profile splits a step into phases that add up to 100 %.
+with tempfile.TemporaryDirectory() as tmp:
+    proc = run(reference, "sim", str(scenes / "net_hanging.json"), "--steps", "20", "--out", str(pathlib.Path(tmp) / "o.json"),
+               "--profile")
+    expect("profile", proc, 0, "profile:", "ms/step", "forces", "integration", "collisions", "stretch limit")
+    shares = [int(p) for p in re.findall(r"\((\d+) %\)", proc.stdout)]
+    if not 95 <= sum(shares) <= 105:
+        failures.append(f"profile: phase shares add up to {sum(shares)} %, expected 100\n{proc.stdout}")
 
 # Lab 3: a scene whose mesh file cannot hold a gas names the scene key, the mesh file and the
 # face; the skeleton names its first missing exercise.
