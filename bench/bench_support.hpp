@@ -1,7 +1,7 @@
 #pragma once
 // What the benchmarks share: the scenes they time, the thread count, and per-step counters.
-// Everything here builds on the reference solutions; README.md's
-// "Performance" section for the table `./springlab bench` prints from these benchmarks.
+// Everything here times the reference solutions; README.md's "Performance" section shows the
+// table `./springlab bench` prints from these benchmarks.
 #include <benchmark/benchmark.h>
 
 #include <memory>
