@@ -1,6 +1,7 @@
 #include "springlab/symplectic_euler.hpp"
 
 #include "springlab/simulation.hpp"
+#include "springlab/spring_batches.hpp"
 
 namespace springlab {
 
@@ -12,7 +13,7 @@ void SymplecticEuler::step(Simulation& sim, double dt) {
   // Each mass on its own: split over threads for large systems.
   State& s = sim.state;
   const int n = sim.numOfMasses();
-#pragma omp parallel for schedule(static) if (n > 4096)
+#pragma omp parallel for schedule(static) if (n > kParallelMasses)
   for (int i = 0; i < n; ++i) {
     s.vel[i] += sim.force[i] * (sim.inverseMass(i) * dt);
     s.pos[i] += s.vel[i] * dt;

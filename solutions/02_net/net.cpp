@@ -10,9 +10,6 @@ namespace springlab::net {
 namespace {
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 constexpr int kStretchPasses = 10;  // Gauss-Seidel passes of stretch limiting per step
-// Below these sizes a loop is too short to be worth waking a second thread.
-constexpr int kParallelMasses = 4096;
-constexpr int kParallelSprings = SpringBatches::kParallelSprings;
 }  // namespace
 
 Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {

@@ -50,7 +50,9 @@ TEST(SpringBatches, AShuffledListStillRunsEverySpringOnceAndSafely) {
   const SpringBatches batches(springs);
   EXPECT_LE(batches.count(), 2) << "a shuffled list cannot be split for threads: one or two batches";
   std::vector<int> visits(springs.size(), 0);
-  batches.forEach([&](int k) { ++visits[static_cast<std::size_t>(k)]; });
+  batches.forEachBatch([&](int first, int last) {
+    for (int k = first; k < last; ++k) ++visits[static_cast<std::size_t>(k)];
+  });
   EXPECT_TRUE(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
 }
 

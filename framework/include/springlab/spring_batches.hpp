@@ -13,6 +13,11 @@
 
 namespace springlab {
 
+// Below these sizes a loop is too short to pay for waking a second thread; every parallel
+// loop of the framework and the labs uses them.
+inline constexpr int kParallelMasses = 4096;
+inline constexpr int kParallelSprings = 8192;
+
 class SpringBatches {
  public:
   SpringBatches() = default;
@@ -22,24 +27,16 @@ class SpringBatches {
   explicit SpringBatches(const std::vector<std::array<int, 2>>& ends, int minimumSpan = 64);
 
   int count() const { return static_cast<int>(begin_.size()) - 1; }
-  // Whether forEach uses threads: enough batches, and enough springs to pay for waking them.
+  // Whether forEachBatch uses threads: enough batches, and at least kParallelSprings springs.
   bool parallel() const { return parallel_; }
-  static constexpr int kParallelSprings = 8192;
   // Springs [begin(b), end(b)) form batch b.
   int begin(int b) const { return begin_[static_cast<std::size_t>(b)]; }
   int end(int b) const { return begin_[static_cast<std::size_t>(b) + 1]; }
   // Whether these batches were made for a list of this many springs.
-  bool fits(std::size_t springs) const { return count() >= 0 && static_cast<std::size_t>(begin_.back()) == springs; }
+  bool fits(std::size_t springs) const { return static_cast<std::size_t>(begin_.back()) == springs; }
 
-  // perSpring(k) for every spring k, even batches in parallel, then odd ones. perSpring may
-  // add to both ends' entries of per-mass arrays.
-  template <class PerSpring>
-  void forEach(PerSpring&& perSpring) const {
-    forEachBatch([&](int first, int last) {
-      for (int k = first; k < last; ++k) perSpring(k);
-    });
-  }
-  // perBatch(first, last) for the springs [first, last) of every batch, as forEach.
+  // perBatch(first, last) for the springs [first, last) of every batch: even batches in
+  // parallel, then odd ones. perBatch may add to both ends' entries of per-mass arrays.
   template <class PerBatch>
   void forEachBatch(PerBatch&& perBatch) const {
     const int batches = count();
