@@ -220,7 +220,7 @@ class BlockSystem {
   std::vector<std::array<int, 2>> pairRows_; // [p] first rows of pair k's ends; -1: the pair is ignored
   SpringBatches batches_;                    // the pairs split for threads
   std::vector<char> patternFree_;            // what the layout was built for
-  std::vector<std::pair<int, int>> patternPairs_;
+  std::vector<std::array<int, 2>> patternPairs_;
 };
 
 // ---- Given: conjugate gradients for a BlockSystem ---------------------------------------

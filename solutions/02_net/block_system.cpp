@@ -10,7 +10,7 @@ void BlockSystem::prepare(const std::vector<char>& free, const ForceJacobian& J)
   // Same masses and couplings as last time: keep the layout, zero the values.
   bool same = free == patternFree_ && J.pairs.size() == patternPairs_.size();
   for (std::size_t k = 0; same && k < J.pairs.size(); ++k) {
-    same = J.pairs[k].i == patternPairs_[k].first && J.pairs[k].j == patternPairs_[k].second;
+    same = J.pairs[k].i == patternPairs_[k][0] && J.pairs[k].j == patternPairs_[k][1];
   }
   if (same && !row_.empty()) {
     setZero();
@@ -30,7 +30,6 @@ void BlockSystem::prepare(const std::vector<char>& free, const ForceJacobian& J)
 
   // A pair couples two different free masses, or nothing.
   pairRows_.resize(patternPairs_.size());
-  std::vector<std::array<int, 2>> ends(patternPairs_.size());
   for (std::size_t k = 0; k < patternPairs_.size(); ++k) {
     const auto [i, j] = patternPairs_[k];
     if (i < 0 || j < 0 || static_cast<std::size_t>(i) >= n || static_cast<std::size_t>(j) >= n) {
@@ -38,9 +37,8 @@ void BlockSystem::prepare(const std::vector<char>& free, const ForceJacobian& J)
     }
     const int ri = row_[static_cast<std::size_t>(i)], rj = row_[static_cast<std::size_t>(j)];
     pairRows_[k] = ri < 0 || rj < 0 || ri == rj ? std::array<int, 2>{-1, -1} : std::array<int, 2>{ri, rj};
-    ends[k] = {i, j};
   }
-  batches_ = SpringBatches(ends);
+  batches_ = SpringBatches(patternPairs_);
   diagonal_.resize(static_cast<std::size_t>(blocks));
   coupling_.resize(patternPairs_.size());
   b_.resize(3 * blocks);
@@ -57,7 +55,7 @@ void BlockSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   // The diagonal blocks, each row on its own; then the pairs, each adding to both its rows.
   y.resize(b_.size());
   const int blocks = static_cast<int>(diagonal_.size());
-#pragma omp parallel for schedule(static) if (blocks > 4096)
+#pragma omp parallel for schedule(static) if (blocks > kParallelMasses)
   for (int r = 0; r < blocks; ++r) y.segment<3>(3 * r) = diagonal_[static_cast<std::size_t>(r)] * x.segment<3>(3 * r);
   // Consecutive pairs mostly share their first row: its sum stays in a register until the
   // row changes (as in the cloth's force pass).
