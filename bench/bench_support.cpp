@@ -102,4 +102,9 @@ void timeSteps(benchmark::State& bench, Simulation& sim, double dt, int warmup) 
   bench.counters["springs"] = static_cast<double>(sim.springs.size());
 }
 
+void timeScene(benchmark::State& bench, const std::string& file, const std::vector<std::string>& sets, int warmup) {
+  LoadedScene scene = loadScene(file, sets);
+  timeSteps(bench, *scene.sim, scene.settings.dt, warmup);
+}
+
 }  // namespace springlab::bench

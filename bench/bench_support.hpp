@@ -37,5 +37,7 @@ void useThreads(int threads);
 // Time `sim.operate(dt)` per iteration after `warmup` steps, and report per step: the
 // phases of sim.profile (ms), force evaluations and solver iterations, masses and springs.
 void timeSteps(benchmark::State& bench, Simulation& sim, double dt, int warmup);
+// timeSteps on a scene file of scenes/ with KEY=VALUE changes, at the scene's dt.
+void timeScene(benchmark::State& bench, const std::string& file, const std::vector<std::string>& sets, int warmup);
 
 }  // namespace springlab::bench

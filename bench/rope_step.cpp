@@ -6,9 +6,7 @@ namespace springlab::bench {
 namespace {
 
 void RopeStep(benchmark::State& bench) {
-  const int masses = static_cast<int>(bench.range(0));
-  LoadedScene scene = loadScene("rope.json", {"rope.masses=" + std::to_string(masses)});
-  timeSteps(bench, *scene.sim, scene.settings.dt, 100);
+  timeScene(bench, "rope.json", {"rope.masses=" + std::to_string(bench.range(0))}, 100);
 }
 BENCHMARK(RopeStep)->ArgNames({"masses"})->Arg(80)->UseRealTime()->Unit(benchmark::kMicrosecond);
 

@@ -6,9 +6,7 @@ namespace springlab::bench {
 namespace {
 
 void BallStep(benchmark::State& bench) {
-  const int subdivisions = static_cast<int>(bench.range(0));
-  LoadedScene scene = loadScene("softbody_ball.json", {"softbody.mesh.subdivisions=" + std::to_string(subdivisions)});
-  timeSteps(bench, *scene.sim, scene.settings.dt, 100);
+  timeScene(bench, "softbody_ball.json", {"softbody.mesh.subdivisions=" + std::to_string(bench.range(0))}, 100);
 }
 BENCHMARK(BallStep)->ArgNames({"subdivisions"})->DenseRange(2, 4)->UseRealTime()->Unit(benchmark::kMicrosecond);
 
