@@ -20,7 +20,6 @@ class PhaseProfile {
   using Clock = std::chrono::steady_clock;
   static constexpr int kPhases = static_cast<int>(Phase::kCount);
 
-  bool enabled() const { return enabled_; }
   void setEnabled(bool on) { enabled_ = on; }
   void clear() { seconds_.fill(0.0); }
   // Seconds charged to a phase since the last clear().

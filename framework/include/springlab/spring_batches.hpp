@@ -5,7 +5,7 @@
 // distance a spring spans. Then batch b touches masses [b B, (b + 2) B) only, so batches two
 // apart share no mass: all even batches run at once, then all odd ones. Every mass receives
 // its springs' forces in the same order however many threads run, so sums are bitwise equal.
-// A spring list in any other order gets one batch (a serial loop), which is still correct.
+// A list in any other order gets a single batch (a serial loop), which is still correct.
 #include <array>
 #include <vector>
 
@@ -21,14 +21,12 @@ inline constexpr int kParallelSprings = 8192;
 class SpringBatches {
  public:
   SpringBatches() = default;
-  // Batches for `springs` over `masses` masses; at least `minimumSpan` lower indices each.
+  // Batches for `springs`, each at least `minimumSpan` lower indices wide.
   explicit SpringBatches(const std::vector<Spring>& springs, int minimumSpan = 64);
   // The same for any list of index pairs (a Jacobian's pairs, say).
   explicit SpringBatches(const std::vector<std::array<int, 2>>& ends, int minimumSpan = 64);
 
   int count() const { return static_cast<int>(begin_.size()) - 1; }
-  // Whether forEachBatch uses threads: enough batches, and at least kParallelSprings springs.
-  bool parallel() const { return parallel_; }
   // Springs [begin(b), end(b)) form batch b.
   int begin(int b) const { return begin_[static_cast<std::size_t>(b)]; }
   int end(int b) const { return begin_[static_cast<std::size_t>(b) + 1]; }
@@ -48,7 +46,7 @@ class SpringBatches {
 
  private:
   std::vector<int> begin_{0};  // [batches + 1]
-  bool parallel_ = false;
+  bool parallel_ = false;  // threads: more than two batches and at least kParallelSprings springs
 };
 
 }  // namespace springlab
