@@ -6,8 +6,8 @@
 #include <omp.h>
 #endif
 
-#include "rope.hpp"
-#include "softbody.hpp"
+#include <springlab/rope/rope.hpp>
+#include <springlab/softbody/softbody.hpp>
 
 namespace springlab::bench {
 

@@ -6,8 +6,11 @@
 
 How: a cache build of the framework, the reference "oracle" and the grading tests' objects
 (build-grader/, built once and reused) is configured from this tree. For each submission and
-each lab, only the student's lab files are compiled (in a sandbox, as `nobody` when root) and
-linked with the cached objects into that lab's grading program; then every grading test runs
+each lab, only the student's exercise files (the .cpp files of the released labs/<dir>/) are
+compiled (in a sandbox, as `nobody` when root), against the framework's headers, and linked
+with the lab's given objects (framework/labs/<name>/, compiled once) and the cached objects
+into that lab's grading program; any other file of the submission is ignored and the report
+says so; then every grading test runs
 in its own sandboxed process (tools/grade.py). A lab that does not compile scores 0 alone.
 
 Labs are discovered from CMakeLists.txt (`springlab_add_lab(NAME rope DIR 01_rope)`) with their
@@ -42,7 +45,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import grade  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-SOURCE_SUFFIXES = (".cpp", ".hpp", ".h", ".inl")
+SOURCE_SUFFIXES = (".cpp",)  # a lab folder's exercise files; headers are the framework's
 MAX_FILE_BYTES = 1 << 20
 COMPILE_TIMEOUT = 180.0
 
@@ -100,6 +103,7 @@ class LabBuild:
     lab_include: str        # the -I of the skeleton folder the flags held
     link_argv: list         # the grading program's link line; STUDENT_LIB and OUTPUT placeholders
     link_dir: pathlib.Path
+    given_objects: list     # the lab's given code, archived with the student's exercise objects
     tests_present: set
     oracle_symbols: set     # strong symbols the reference "oracle" defines
     protected_symbols: set  # strong symbols of the framework, GoogleTest and the grading main
@@ -149,7 +153,7 @@ class Cache:
 
     def _lab_build(self, lab, sandbox):
         target = f"springlab_{lab.name}_student"
-        entry = next((c for c in self.commands if f"/{target}.dir/" in c.get("command", "")), None)
+        entry = next((c for c in self.commands if f"/{target}_objects.dir/" in c.get("command", "")), None)
         if entry is None:
             raise GradeError(f"{self.path}: no compile command for {target}; was the lab built?")
         argv = shlex.split(entry["command"])
@@ -188,9 +192,15 @@ class Cache:
                     oracle = path
                 else:
                     protected_files.append(path)
+        # The lab's given code (framework/labs/<name>/, compiled once): CMake lists its objects.
+        listing = self.path / "grading" / f"{lab.name}_given_objects.txt"
+        if not listing.exists():
+            raise GradeError(f"{listing}: missing; was {self.path} configured from this tree?")
+        given = [pathlib.Path(line) for line in listing.read_text().split("\n") if line.strip()]
+        protected_files += given
         skeleton_binary = link_dir / f"{lab.name}_grading_student"
         present = set(grade.listed_tests(str(skeleton_binary), sandbox))
-        return LabBuild(flags, lab_include or "", link, link_dir, present,
+        return LabBuild(flags, lab_include or "", link, link_dir, given, present,
                         defined_symbols([oracle]) if oracle else set(), defined_symbols(protected_files))
 
 
@@ -265,10 +275,17 @@ def find_lab_folder(root, lab):
     return None
 
 
-def collect_sources(folder, notes, label):
-    files = {}
+def collect_sources(folder, notes, label, skeleton):
+    """The submitted exercise files of a lab folder (the .cpp files of the released skeleton
+    folder); any other file that differs from the release is noted and ignored."""
+    exercise_files = {p.name for p in skeleton.iterdir() if p.suffix in SOURCE_SUFFIXES}
+    files, ignored = {}, []
     for path in sorted(folder.iterdir()):
-        if path.suffix not in SOURCE_SUFFIXES:
+        if path.name not in exercise_files:
+            released = skeleton / path.name
+            if path.is_file() and not path.is_symlink() and not (
+                    released.is_file() and released.read_bytes() == path.read_bytes()):
+                ignored.append(path.name)
             continue
         if path.is_symlink():
             notes.append(f"{label}/{path.name}: a symbolic link, ignored (submit the file itself)")
@@ -279,6 +296,9 @@ def collect_sources(folder, notes, label):
             notes.append(f"{label}/{path.name}: larger than {MAX_FILE_BYTES} bytes, ignored")
             continue
         files[path.name] = path.read_bytes()
+    if ignored:
+        notes.append(f"{label}: not graded (only the exercise files are compiled, against the framework's "
+                     f"headers and given code): {', '.join(ignored)}")
     return files
 
 
@@ -446,7 +466,8 @@ class LabGrader:
         shutil.rmtree(bin_dir, ignore_errors=True)
         bin_dir.mkdir()
         library = bin_dir / f"libstudent_{self.lab.name}.a"
-        run = subprocess.run(["ar", "rcs", str(library), *map(str, objects)], capture_output=True, text=True)
+        members = [*map(str, objects), *map(str, self.build.given_objects)]
+        run = subprocess.run(["ar", "rcs", str(library), *members], capture_output=True, text=True)
         if run.returncode != 0:
             return None, run.stderr
         binary = bin_dir / f"{self.lab.name}_grading"
@@ -529,7 +550,7 @@ def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandb
         for lab in labs:
             folder = find_lab_folder(root, lab)
             lab_notes = []
-            submitted = collect_sources(folder, lab_notes, lab.dir) if folder else {}
+            submitted = collect_sources(folder, lab_notes, lab.dir, lab.skeleton) if folder else {}
             found_any |= bool(submitted)
             work = base / lab.dir
             work.mkdir()

@@ -1,6 +1,6 @@
 #include <Eigen/Dense>
 
-#include "net.hpp"
+#include <springlab/net/exercises.hpp>
 
 namespace springlab::net {
 

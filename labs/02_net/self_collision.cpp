@@ -2,7 +2,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "net.hpp"
+#include <springlab/net/exercises.hpp>
 
 namespace springlab::net {
 

@@ -3,7 +3,7 @@
 #include <set>
 #include <utility>
 
-#include "softbody.hpp"
+#include <springlab/softbody/exercises.hpp>
 
 namespace springlab::softbody {
 

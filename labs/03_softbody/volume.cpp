@@ -1,4 +1,4 @@
-#include "softbody.hpp"
+#include <springlab/softbody/exercises.hpp>
 
 namespace springlab::softbody {
 

@@ -1,4 +1,4 @@
-#include "rope.hpp"
+#include <springlab/rope/exercises.hpp>
 
 namespace springlab::rope {
 

@@ -1,6 +1,6 @@
 #include <algorithm>
 
-#include "net.hpp"
+#include <springlab/net/exercises.hpp>
 
 namespace springlab::net {
 

@@ -1,4 +1,4 @@
-#include "net.hpp"
+#include <springlab/net/exercises.hpp>
 
 namespace springlab::net {
 

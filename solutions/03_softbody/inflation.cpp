@@ -1,7 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "softbody.hpp"
+#include <springlab/softbody/exercises.hpp>
 
 namespace springlab::softbody {
 

@@ -1,6 +1,6 @@
 #include <algorithm>
 
-#include "softbody.hpp"
+#include <springlab/softbody/exercises.hpp>
 
 namespace springlab::softbody {
 

@@ -139,7 +139,7 @@ def patch(text, includes, prelude, body):
         raise SystemExit(f"sabotage.py: the target {SIGNATURE} with exercise {TARGET_EXERCISE} is gone; update TARGET")
     text = block.sub(lambda m: m.group(1) + body.strip("\n") + m.group(2), text)
     head = "".join(f"#include {inc}\n" for inc in includes.split("\n#include ") if inc)
-    text = text.replace('#include "rope.hpp"\n', '#include "rope.hpp"\n' + head, 1)
+    text = text.replace('#include <springlab/rope/exercises.hpp>\n', '#include <springlab/rope/exercises.hpp>\n' + head, 1)
     return text.replace("namespace springlab::rope {", prelude.strip("\n") + "\n\nnamespace springlab::rope {", 1) \
         if prelude else text
 
@@ -181,6 +181,16 @@ def make(folder, escape_marks):
     expect["includes_reference"] = "control"
     (solutions_copy("missing_file") / name).unlink()
     expect["missing_file"] = "control"
+    # The lab's header edited (a field added to a type the given code shares, a declaration
+    # changed): only exercise files are compiled, against the framework's header, so the
+    # edit changes nothing (no ODR violation) and the report says the file was not graded.
+    released = (ROOT / "labs" / TARGET_LAB / "exercises.hpp").read_text()
+    edited = released.replace("  Vec3 vel;  // m/s\n};",
+                              "  Vec3 vel;  // m/s\n  double extra[64];  // a field the given code does not know\n};", 1)
+    if edited == released:
+        raise SystemExit("sabotage.py: PhasePoint is gone from the released exercises.hpp; update edits_header")
+    (solutions_copy("edits_header") / "exercises.hpp").write_text(edited)
+    expect["edits_header"] = "reference"
     (folder / "empty").mkdir()
     expect["empty"] = "all_zero"
     with zipfile.ZipFile(folder / "zip_escape.zip", "w") as zf:
@@ -304,6 +314,8 @@ def main():
     report = (out / "does_not_compile" / "report.md").read_text()
     if "does not compile" not in report or "error" not in report:
         problems.append("does_not_compile: the report does not show the compiler's errors")
+    if "not graded" not in (out / "edits_header" / "report.md").read_text():
+        problems.append("edits_header: the report does not say the edited header was not graded")
     for student in ("calls_reference", "includes_reference"):
         if "graded as the released skeleton" not in (out / student / "report.md").read_text():
             problems.append(f"{student}: the report does not say the file was replaced by the skeleton's")

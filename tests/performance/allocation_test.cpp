@@ -12,9 +12,9 @@
 #include <springlab/registry.hpp>
 #include <springlab/scene_document.hpp>
 
-#include "net.hpp"
-#include "rope.hpp"
-#include "softbody.hpp"
+#include <springlab/net/net.hpp>
+#include <springlab/rope/rope.hpp>
+#include <springlab/softbody/softbody.hpp>
 
 namespace {
 std::atomic<bool> counting{false};

@@ -9,7 +9,7 @@
 #include <omp.h>
 #endif
 
-#include "net.hpp"
+#include <springlab/net/net.hpp>
 
 namespace springlab {
 namespace {

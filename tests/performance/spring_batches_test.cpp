@@ -7,7 +7,7 @@
 
 #include <springlab/spring_batches.hpp>
 
-#include "net.hpp"
+#include <springlab/net/net.hpp>
 
 namespace springlab {
 namespace {

@@ -7,7 +7,7 @@
 #include <springlab/registry.hpp>
 #include <springlab/simulation.hpp>
 
-#include "net.hpp"
+#include <springlab/net/net.hpp>
 
 namespace springlab::testing {
 

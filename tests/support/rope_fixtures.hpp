@@ -4,7 +4,7 @@
 
 #include <springlab/registry.hpp>
 
-#include "rope.hpp"
+#include <springlab/rope/rope.hpp>
 
 namespace springlab::testing {
 

@@ -6,7 +6,7 @@
 #include <springlab/mesh.hpp>
 #include <springlab/registry.hpp>
 
-#include "softbody.hpp"
+#include <springlab/softbody/softbody.hpp>
 
 namespace springlab::testing {
 

@@ -9,6 +9,8 @@
 #include <array>
 #include <vector>
 
+#include <springlab/loop_exceptions.hpp>
+
 #include "springlab/spring.hpp"
 
 namespace springlab {
@@ -38,9 +40,12 @@ class SpringBatches {
   template <class PerBatch>
   void forEachBatch(PerBatch&& perBatch) const {
     const int batches = count();
+    // perBatch calls exercises, which may throw: carried out of the parallel region.
+    LoopExceptions exceptions;
     for (int parity = 0; parity < 2; ++parity) {
 #pragma omp parallel for schedule(static) if (parallel_)
-      for (int b = parity; b < batches; b += 2) perBatch(begin(b), end(b));
+      for (int b = parity; b < batches; b += 2) exceptions.run([&] { perBatch(begin(b), end(b)); });
+      exceptions.rethrow();
     }
   }
 

@@ -375,6 +375,13 @@ int Viewer::run() {
               << r.physicsMs << " ms + drawing " << r.drawMs << " ms a frame" << std::endl;
   }
   closeWindow();
+  // A headless run ends as `sim` would: exit 3 when an exercise is missing (the panel has
+  // named it on screen and on the terminal), so scripts and tests can tell.
+  if (options_.frames > 0 && exitCode == 0 && missing_) {
+    std::cerr << "springlab view: exercise " << missing_->id << " (" << missing_->title
+              << ") is not implemented yet; see " << missing_->handoutSection << "\n";
+    exitCode = 3;
+  }
   return exitCode;
 }
 

@@ -1,7 +1,7 @@
 // Exercises 1.2 and 1.3: gravity, air friction and the ground.
 #include <gtest/gtest.h>
 
-#include "rope.hpp"
+#include <springlab/rope/rope.hpp>
 #include "seeded.hpp"
 
 namespace springlab::rope {

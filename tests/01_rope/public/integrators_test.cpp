@@ -5,7 +5,7 @@
 #include <cmath>
 #include <functional>
 
-#include "rope.hpp"
+#include <springlab/rope/rope.hpp>
 #include "seeded.hpp"
 
 namespace springlab::rope {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "rope.hpp"
+#include <springlab/rope/rope.hpp>
 #include "rope_fixtures.hpp"
 #include "seeded.hpp"
 

@@ -1,7 +1,7 @@
 // Exercise 1.1: the spring-damper force, checked against Hooke's law and linear damping.
 #include <gtest/gtest.h>
 
-#include "rope.hpp"
+#include <springlab/rope/rope.hpp>
 #include "seeded.hpp"
 
 namespace springlab::rope {

@@ -263,7 +263,7 @@ TEST_F(MatchesReference, ImplicitEulerSystem) {
     std::vector<char> free(static_cast<std::size_t>(net->numOfMasses()));
     for (int i = 0; i < net->numOfMasses(); ++i) free[static_cast<std::size_t>(i)] = net->inverseMass(i) != 0.0;
     BlockSystem mine;
-    ref::BlockSystem theirs;
+    BlockSystem theirs;
     mine.prepare(free, J);
     theirs.prepare(free, J);
     assembleImplicitEuler(*net, net->force, J, dt, mine);

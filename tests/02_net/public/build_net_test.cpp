@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <set>
 
-#include "net.hpp"
+#include <springlab/net/net.hpp>
 #include "net_fixtures.hpp"
 #include "seeded.hpp"
 

@@ -1,7 +1,7 @@
 // Exercise 2.5: projection out of spheres and planes, and the velocity after a contact.
 #include <gtest/gtest.h>
 
-#include "net.hpp"
+#include <springlab/net/net.hpp>
 #include "net_fixtures.hpp"
 #include "seeded.hpp"
 

@@ -5,7 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "net.hpp"
+#include <springlab/net/net.hpp>
 #include "net_fixtures.hpp"
 #include "seeded.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "net.hpp"
+#include <springlab/net/net.hpp>
 #include "net_fixtures.hpp"
 #include "seeded.hpp"
 

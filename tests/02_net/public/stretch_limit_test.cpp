@@ -1,7 +1,7 @@
 // Exercise 2.6: stretch limiting after each step.
 #include <gtest/gtest.h>
 
-#include "net.hpp"
+#include <springlab/net/net.hpp>
 #include "net_fixtures.hpp"
 #include "seeded.hpp"
 

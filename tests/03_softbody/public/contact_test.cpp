@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "seeded.hpp"
-#include "softbody.hpp"
+#include <springlab/softbody/softbody.hpp>
 #include "softbody_fixtures.hpp"
 
 namespace springlab::softbody {

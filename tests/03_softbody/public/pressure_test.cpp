@@ -8,7 +8,7 @@
 #include <springlab/symplectic_euler.hpp>
 
 #include "seeded.hpp"
-#include "softbody.hpp"
+#include <springlab/softbody/softbody.hpp>
 #include "softbody_fixtures.hpp"
 
 namespace springlab::softbody {

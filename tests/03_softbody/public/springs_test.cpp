@@ -7,7 +7,7 @@
 #include <set>
 
 #include "seeded.hpp"
-#include "softbody.hpp"
+#include <springlab/softbody/softbody.hpp>
 #include "softbody_fixtures.hpp"
 
 namespace springlab::softbody {

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "seeded.hpp"
-#include "softbody.hpp"
+#include <springlab/softbody/softbody.hpp>
 #include "softbody_fixtures.hpp"
 
 namespace springlab::softbody {

@@ -1,0 +1,31 @@
+#pragma once
+// General solver code: block-Jacobi preconditioned conjugate gradients for a BlockSystem.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <springlab/math.hpp>
+#include <springlab/solvers/block_system.hpp>
+
+namespace springlab {
+
+// ---- Conjugate gradients for a BlockSystem ------------------------------------------
+// Preconditioned CG, stopping at |b - A x| <= tolerance |b| (as Eigen's ConjugateGradient).
+// The preconditioner inverts each free mass's own 3x3 block (block Jacobi): it sees a
+// spring's direction, where a diagonal one sees three scalars. Its vectors are kept between
+// solves, so a step allocates nothing; dot products run in a fixed order, so the result does
+// not depend on the number of threads.
+class BlockJacobiCG {
+ public:
+  double tolerance = 1e-6;
+  // Solve A x = b of `system`, starting from x (a warm start); returns the iterations made
+  // (at most 2 x rows, as Eigen's).
+  int solve(const BlockSystem& system, Eigen::VectorXd& x);
+
+ private:
+  void precondition(const Eigen::VectorXd& in, Eigen::VectorXd& out) const;
+  std::vector<Mat3> inverseDiagonal_;  // [free masses] A_ii^-1
+  Eigen::VectorXd r_, z_, p_, q_;      // residual, preconditioned residual, direction, A p
+};
+
+}  // namespace springlab

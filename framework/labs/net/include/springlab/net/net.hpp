@@ -1,0 +1,77 @@
+#pragma once
+// Lab 2: the elastic net, given code. The Net system, its scene reader and the registration
+// of the lab's scene kind and integrators, built on the exercises of springlab/net/exercises.hpp;
+// the framework compiles this once and links it with the student's exercises (labs/02_net/)
+// or the reference (solutions/02_net/).
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <springlab/integrator.hpp>
+#include <springlab/net/exercises.hpp>
+#include <springlab/registry.hpp>
+#include <springlab/scene_reader.hpp>
+#include <springlab/simulation.hpp>
+#include <springlab/spring_batches.hpp>
+
+namespace springlab::net {
+
+// Read a scene's "net" section; errors name the file and the key.
+NetParameters readNetParameters(SceneReader& section, const SceneSettings& settings);
+
+
+// ---- The net system, calling the exercises ----------------------------------------------
+class Net final : public Simulation {
+ public:
+  Net(int dimension, const NetParameters& parameters);
+
+  NetParameters settings;  // the scene's settings; panel edits land here
+
+  std::string kind() const override { return "net"; }
+  bool addForceJacobian(const State& s, ForceJacobian& J) override;
+  std::vector<Parameter> parameters() override;
+  void parametersChanged() override;
+  std::vector<Shape> shapes() const override;
+  void moveShape(int index, const Vec3& center) override;
+  std::optional<double> groundHeight() const override;
+  Bounds reach() const override;
+  std::vector<Observable> observables() const override;
+
+  int columns() const { return columns_; }
+  int rows() const { return rows_; }
+  const std::vector<SphereCollider>& spheres() const { return spheres_; }
+  // Move a sphere to `center` at the next step (what the viewer's drag does).
+  void moveSphere(int sphere, const Vec3& center);
+
+ protected:
+  void accumulateForces(const State& s, std::vector<Vec3>& f) override;
+  void afterStep(double dt) override;
+  void onReset() override;
+
+ private:
+  void applyWindPanel();
+  // The wind's arrow above a box around the cloth, when there is wind.
+  std::optional<Shape> windArrow(const Bounds& box) const;
+
+  int columns_ = 0;
+  int rows_ = 0;
+  std::vector<SphereCollider> spheres_;            // current colliders
+  std::vector<std::optional<Vec3>> sphereTarget_;  // [spheres] where a drag moves each next step
+  SpringBatches batches_;                          // the springs split for threads (force pass)
+  std::vector<Vec3> normals_;                      // [n] scratch for the wind
+  std::vector<double> areas_;                      // [n] m^2
+  std::vector<double> inverseMass_;                // [n] scratch for stretch limiting
+  Vec3 pinnedCentre_ = Vec3::Zero();               // m, centre of the pinned masses at the start
+  double windAzimuth_ = 0.0;                       // degrees, panel
+  double windElevation_ = 0.0;                     // degrees, panel
+  double gravityY_ = 0.0;                          // m/s^2, panel
+  std::array<double, 3> stiffness_{};              // N/m per kind, panel
+  std::array<double, 3> damping_{};                // N s/m per kind, panel
+};
+
+// Registers the "net" scene kind and the implicit integrators "implicit_euler" and
+// "implicit_euler_blocks" (which run on any scene that provides its force Jacobians).
+void registerLab(Registry& registry);
+
+}  // namespace springlab::net

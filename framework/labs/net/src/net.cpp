@@ -1,0 +1,328 @@
+// The net system (given): builds the grid with exercise 2.1, adds the forces of 2.2-2.4,
+// linearises them with 2.7 and corrects each step with 2.5, 2.6 and 2.10.
+#include <algorithm>
+#include <cmath>
+
+#include <springlab/loop_exceptions.hpp>
+#include <springlab/net/net.hpp>
+
+namespace springlab::net {
+
+namespace {
+constexpr double kDegrees = 3.14159265358979323846 / 180.0;
+constexpr int kStretchPasses = 10;  // Gauss-Seidel passes of stretch limiting per step
+}  // namespace
+
+Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
+  // The grid of exercise 2.1 is the initial state.
+  NetLayout layout = buildNet(p);
+  masses = std::move(layout.masses);
+  springs = std::move(layout.springs);
+  triangles = std::move(layout.triangles);
+  state.pos = std::move(layout.pos);
+  state.vel = std::move(layout.vel);
+  gravitation = p.gravitation;
+  columns_ = p.resolution;
+  rows_ = gridRows(p);
+  spheres_ = p.spheres;
+  sphereTarget_.assign(spheres_.size(), std::nullopt);
+
+  // What the panel edits.
+  gravityY_ = p.gravitation.y();
+  for (int k = 0; k < 3; ++k) {
+    stiffness_[k] = p.springs[k].stiffness;
+    damping_[k] = p.springs[k].damping;
+  }
+  const Vec3& d = p.wind.direction;
+  windAzimuth_ = std::atan2(d.z(), d.x()) / kDegrees;
+  windElevation_ = std::asin(std::clamp(d.y(), -1.0, 1.0)) / kDegrees;
+
+  // The plane the pinned masses start in, for the bulge.
+  int pinned = 0;
+  for (int i = 0; i < numOfMasses(); ++i) {
+    if (masses[i].pinned) {
+      pinnedCentre_ += state.pos[i];
+      ++pinned;
+    }
+  }
+  if (pinned > 0) pinnedCentre_ /= pinned;
+  markInitialState();
+}
+
+// Both loops below run once per spring per step: `flatten` inlines the exercises they call
+// where the compiler sees them (the reference is built as one unit). Springs run in batches
+// on several threads (springlab/spring_batches.hpp); the sums do not depend on the count.
+[[gnu::flatten]] void Net::accumulateForces(const State& s, std::vector<Vec3>& f) {
+  // Springs: equal and opposite on their ends (exercise 2.2).
+  if (!batches_.fits(springs.size())) batches_ = SpringBatches(springs);
+  // A grid lists up to six springs of one first mass in a row: their forces on it add up in
+  // a register and land once, instead of six dependent read-add-writes of f[mass1].
+  batches_.forEachBatch([&](int first, int last) {
+    int pending = -1;  // the first mass whose sum is held in `sum`
+    Vec3 sum = Vec3::Zero();
+    for (int k = first; k < last; ++k) {
+      const Spring& sp = springs[static_cast<std::size_t>(k)];
+      const Vec3 f1 = springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
+                                        sp.springConstant, sp.springLength, sp.frictionConstant);
+      if (sp.mass1 != pending) {
+        if (pending >= 0) f[pending] += sum;
+        pending = sp.mass1;
+        sum.setZero();
+      }
+      sum += f1;
+      f[sp.mass2] -= f1;
+    }
+    if (pending >= 0) f[pending] += sum;
+  });
+  // Gravity and air friction on each mass.
+  const int n = numOfMasses();
+#pragma omp parallel for schedule(static) if (n > kParallelMasses)
+  for (int i = 0; i < n; ++i) {
+    f[i] += masses[i].m * (gravitation - settings.airFriction * s.vel[i]);
+  }
+  // Wind on the surface, through each mass's normal and area (exercises 2.3 and 2.4).
+  const Wind& w = settings.wind;
+  const bool windActs = w.model == WindModel::Relative ? w.drag > 0.0 : w.strength > 0.0;
+  if (windActs && !triangles.empty()) {
+    {
+      const PhaseProfile::Scope phase(profile, Phase::kNormals);
+      vertexNormals(s.pos, triangles, normals_, areas_);
+    }
+    for (int i = 0; i < numOfMasses(); ++i) f[i] += windForce(w, s.vel[i], normals_[i], areas_[i]);
+  }
+}
+
+[[gnu::flatten]] bool Net::addForceJacobian(const State& s, ForceJacobian& J) {
+  // Springs (exercise 2.7), in the order of `springs`; the wind stays explicit. Each pair is
+  // written once (resize leaves them unset), by whichever thread computes it.
+  J.pairs.resize(springs.size());
+  const int count = static_cast<int>(springs.size());
+  LoopExceptions exceptions;  // a missing exercise 2.7 reaches the caller, not std::terminate
+#pragma omp parallel for schedule(static) if (count > kParallelSprings)
+  for (int k = 0; k < count; ++k) {
+    exceptions.run([&] {
+      const Spring& sp = springs[static_cast<std::size_t>(k)];
+      const SpringJacobian sj =
+          springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant, sp.springLength, sp.frictionConstant);
+      J.pairs[static_cast<std::size_t>(k)] = ForceJacobian::Pair(sp.mass1, sp.mass2, sj.dx, sj.dv);
+    });
+  }
+  exceptions.rethrow();
+  // Air friction, -c m v on each mass.
+  if (settings.airFriction > 0.0) {
+    for (int i = 0; i < numOfMasses(); ++i) {
+      J.own.push_back({i, Mat3::Zero(), -settings.airFriction * masses[i].m * Mat3::Identity()});
+    }
+  }
+  return true;
+}
+
+void Net::afterStep(double dt) {
+  // Dragged spheres move to where the user holds them, at the velocity that takes.
+  for (std::size_t k = 0; k < spheres_.size(); ++k) {
+    SphereCollider& sphere = spheres_[k];
+    if (sphereTarget_[k]) {
+      sphere.velocity = (*sphereTarget_[k] - sphere.center) / dt;
+      sphere.center = *sphereTarget_[k];
+      sphereTarget_[k].reset();
+    } else {
+      sphere.velocity.setZero();
+    }
+  }
+
+  // Stretch limiting (exercise 2.6), then self-collision (2.10): both move masses apart.
+  inverseMass_.resize(masses.size());
+  for (int i = 0; i < numOfMasses(); ++i) inverseMass_[static_cast<std::size_t>(i)] = inverseMass(i);
+  if (settings.stretchLimiting) {
+    const PhaseProfile::Scope phase(profile, Phase::kStretchLimit);
+    limitStretch(state.pos, state.vel, springs, inverseMass_, settings.maxStretch, dt, kStretchPasses);
+  }
+  if (settings.selfCollision) {
+    const PhaseProfile::Scope phase(profile, Phase::kCollisions);
+    for (const auto& [i, j] : closePairs(state.pos, settings.thickness)) {
+      separatePair(state.pos[i], state.pos[j], state.vel[i], state.vel[j], inverseMass_[static_cast<std::size_t>(i)],
+                   inverseMass_[static_cast<std::size_t>(j)], settings.thickness);
+    }
+  }
+
+  // Colliders last, so no mass ends a step inside one (exercise 2.5).
+  const PhaseProfile::Scope collisions(profile, Phase::kCollisions);
+  for (int i = 0; i < numOfMasses(); ++i) {
+    if (inverseMass_[static_cast<std::size_t>(i)] == 0.0) continue;
+    for (const SphereCollider& sphere : spheres_) {
+      const Contact c = sphereContact(state.pos[i], sphere.center, sphere.radius);
+      if (!c.touching) continue;
+      state.pos[i] = c.pos;
+      state.vel[i] = contactVelocity(state.vel[i], sphere.velocity, c.normal, settings.absorption, settings.friction);
+    }
+    for (const PlaneCollider& plane : settings.planes) {
+      const Contact c = planeContact(state.pos[i], plane.point, plane.normal);
+      if (!c.touching) continue;
+      state.pos[i] = c.pos;
+      state.vel[i] = contactVelocity(state.vel[i], Vec3::Zero(), c.normal, settings.absorption, settings.friction);
+    }
+  }
+  // A 2D net stays exactly in its plane.
+  if (dimension == 2) {
+    for (Vec3& x : state.pos) x.z() = 0.0;
+    for (Vec3& v : state.vel) v.z() = 0.0;
+  }
+}
+
+void Net::onReset() {
+  spheres_ = settings.spheres;
+  sphereTarget_.assign(spheres_.size(), std::nullopt);
+}
+
+void Net::moveSphere(int sphere, const Vec3& center) {
+  if (sphere < 0 || sphere >= static_cast<int>(spheres_.size())) return;
+  Vec3 c = center;
+  if (dimension == 2) c.z() = 0.0;
+  sphereTarget_[static_cast<std::size_t>(sphere)] = c;
+}
+
+// ---- what the viewer shows ---------------------------------------------------------------
+
+namespace {
+// Colliders are drawn this far (m) behind their surface, so cloth resting on them shows.
+constexpr double kDrawInset = 0.004;
+
+// The first plane facing straight up: the ground.
+const PlaneCollider* groundPlane(const std::vector<PlaneCollider>& planes) {
+  for (const PlaneCollider& plane : planes) {
+    if (plane.normal.y() > 1.0 - 1e-12) return &plane;
+  }
+  return nullptr;
+}
+}  // namespace
+
+std::optional<double> Net::groundHeight() const {
+  // The viewer draws the ground plane, a little below it (see kDrawInset).
+  if (const PlaneCollider* ground = groundPlane(settings.planes)) return ground->point.y() - kDrawInset;
+  return std::nullopt;
+}
+
+std::vector<Shape> Net::shapes() const {
+  // Spheres first (their indices are the ones moveShape receives), then the slopes, then the wind.
+  std::vector<Shape> out;
+  for (const SphereCollider& s : spheres_) {
+    out.push_back(Shape{ShapeType::Sphere, s.center, Vec3::UnitY(), s.radius, s.movable});
+  }
+  const PlaneCollider* ground = groundPlane(settings.planes);
+  for (const PlaneCollider& plane : settings.planes) {
+    if (&plane == ground) continue;  // drawn by the viewer as the ground
+    out.push_back(Shape{ShapeType::Plane, plane.point - kDrawInset * plane.normal, plane.normal, 0.0, false});
+  }
+  if (const std::optional<Shape> arrow = windArrow(Simulation::reach())) out.push_back(*arrow);
+  return out;
+}
+
+std::optional<Shape> Net::windArrow(const Bounds& b) const {
+  // Above the cloth's box, centred, as long as the wind is strong (up to 60 % of the box).
+  if (settings.wind.strength <= 0.0) return std::nullopt;
+  const double size = std::max((b.hi - b.lo).norm(), 0.5);
+  const double scale = settings.wind.model == WindModel::Relative ? 0.05 : 0.03;  // per m/s, per N/m^2
+  const Vec3 length = std::min(scale * settings.wind.strength, 0.6) * size * settings.wind.direction;
+  const Vec3 middle = 0.5 * (b.lo + b.hi) + Vec3(0.0, 0.5 * (b.hi.y() - b.lo.y()) + 0.2 * size, 0.0);
+  return Shape{ShapeType::Arrow, middle - 0.5 * length, length, 0.0, false};
+}
+
+void Net::moveShape(int index, const Vec3& center) {
+  // Only spheres are movable; they come first in shapes().
+  if (index >= 0 && index < static_cast<int>(spheres_.size()) && spheres_[static_cast<std::size_t>(index)].movable) {
+    moveSphere(index, center);
+  }
+}
+
+Bounds Net::reach() const {
+  // The cloth, its colliders, and the plane points: where the cloth can fall to.
+  Bounds b = Simulation::reach();
+  for (const SphereCollider& s : settings.spheres) {
+    b.lo = b.lo.cwiseMin(s.center - Vec3::Constant(s.radius));
+    b.hi = b.hi.cwiseMax(s.center + Vec3::Constant(s.radius));
+  }
+  for (const PlaneCollider& plane : settings.planes) {
+    b.lo = b.lo.cwiseMin(plane.point);
+    b.hi = b.hi.cwiseMax(plane.point);
+  }
+  // And the wind's arrow, so the camera shows it.
+  if (const std::optional<Shape> arrow = windArrow(Simulation::reach())) {
+    for (const Vec3& end : {arrow->center, Vec3(arrow->center + arrow->axis)}) {
+      b.lo = b.lo.cwiseMin(end);
+      b.hi = b.hi.cwiseMax(end);
+    }
+  }
+  return b;
+}
+
+std::vector<Observable> Net::observables() const {
+  // drape_height: the lowest point of the cloth; max_strain: the most stretched spring.
+  double lowest = INFINITY;
+  for (const Vec3& x : state.pos) lowest = std::min(lowest, x.y());
+  double strain = 0.0;
+  for (const Spring& s : springs) {
+    if (s.springLength > 0.0) {
+      strain = std::max(strain, (state.pos[s.mass1] - state.pos[s.mass2]).norm() / s.springLength - 1.0);
+    }
+  }
+  std::vector<Observable> out{{"drape_height", "m", lowest}, {"max_strain", "", strain}};
+
+  // bulge: how far the cloth reaches along the wind beyond where its pinned masses started.
+  const bool pinned = std::any_of(masses.begin(), masses.end(), [](const Mass& m) { return m.pinned; });
+  if (pinned) {
+    double bulge = 0.0;
+    for (const Vec3& x : state.pos) bulge = std::max(bulge, (x - pinnedCentre_).dot(settings.wind.direction));
+    out.push_back({"bulge", "m", bulge});
+  }
+  return out;
+}
+
+// ---- the panel ------------------------------------------------------------------------------
+
+std::vector<Parameter> Net::parameters() {
+  return {
+      {"wind strength", settings.wind.model == WindModel::Relative ? "m/s" : "N/m^2", &settings.wind.strength, 0.0, 40.0,
+       false},
+      {"wind azimuth", "deg", &windAzimuth_, -180.0, 180.0, false},
+      {"wind elevation", "deg", &windElevation_, -90.0, 90.0, false},
+      {"structural stiffness", "N/m", &stiffness_[kStructural], 0.1, 1.0e5, true},
+      {"shear stiffness", "N/m", &stiffness_[kShear], 0.1, 1.0e5, true},
+      {"bend stiffness", "N/m", &stiffness_[kBend], 0.1, 1.0e5, true},
+      {"structural damping", "N s/m", &damping_[kStructural], 0.0, 10.0, false},
+      {"shear damping", "N s/m", &damping_[kShear], 0.0, 10.0, false},
+      {"bend damping", "N s/m", &damping_[kBend], 0.0, 10.0, false},
+      {"gravity y", "m/s^2", &gravityY_, -30.0, 30.0, false},
+      {"air friction", "1/s", &settings.airFriction, 0.0, 5.0, false},
+      {"contact absorption", "", &settings.absorption, 0.0, 2.0, false},
+      {"contact friction", "", &settings.friction, 0.0, 2.0, false},
+      {"max stretch", "", &settings.maxStretch, 0.01, 1.0, false},
+  };
+}
+
+void Net::parametersChanged() {
+  // Each spring takes its kind's constants; the wind its direction from the two angles.
+  for (Spring& s : springs) {
+    if (s.kind >= kStructural && s.kind <= kBend) {
+      s.springConstant = stiffness_[static_cast<std::size_t>(s.kind)];
+      s.frictionConstant = damping_[static_cast<std::size_t>(s.kind)];
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    settings.springs[static_cast<std::size_t>(k)].stiffness = stiffness_[static_cast<std::size_t>(k)];
+    settings.springs[static_cast<std::size_t>(k)].damping = damping_[static_cast<std::size_t>(k)];
+  }
+  gravitation.y() = gravityY_;
+  applyWindPanel();
+}
+
+void Net::applyWindPanel() {
+  const double a = windAzimuth_ * kDegrees, e = windElevation_ * kDegrees;
+  settings.wind.direction = Vec3(std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a));
+  if (dimension == 2) {
+    settings.wind.direction.z() = 0.0;
+    if (settings.wind.direction.norm() < 1e-9) settings.wind.direction = Vec3::UnitX();
+    settings.wind.direction.normalize();
+  }
+}
+
+}  // namespace springlab::net

@@ -1,0 +1,39 @@
+#include <springlab/rope/rope.hpp>
+
+namespace springlab::rope {
+
+Rope::Rope(int dim, const RopeParameters& p) : RopeSimulation(dim, p) {
+  // Build the chain from exercise 1.7 and start the run from it.
+  RopeLayout layout = buildRope(p);
+  masses = std::move(layout.masses);
+  springs = std::move(layout.springs);
+  state.pos = std::move(layout.pos);
+  state.vel = std::move(layout.vel);
+  finishBuilding();
+}
+
+void Rope::accumulateForces(const State& s, std::vector<Vec3>& f) {
+  // Springs: equal and opposite on their two ends (exercise 1.1).
+  for (const Spring& sp : springs) {
+    const Vec3 f1 = springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
+                                      sp.springConstant, sp.springLength, sp.frictionConstant);
+    f[sp.mass1] += f1;
+    f[sp.mass2] -= f1;
+  }
+  // Gravity, air and ground on each mass (exercises 1.2 and 1.3).
+  for (int i = 0; i < numOfMasses(); ++i) {
+    f[i] += gravityAndAirFriction(masses[i].m, s.vel[i], gravitation, airFrictionConstant);
+    f[i] += groundContactForce(s.pos[i], s.vel[i], ground);
+  }
+}
+
+void Rope::afterStep(double dt) {
+  // The connection point moves; the fixed mass follows it exactly (exercise 1.8).
+  const PhasePoint next = moveConnection({ropeConnectionPos, ropeConnectionVel}, dt, ground.height);
+  ropeConnectionPos = next.pos;
+  ropeConnectionVel = next.vel;
+  state.pos[0] = ropeConnectionPos;
+  state.vel[0] = ropeConnectionVel;
+}
+
+}  // namespace springlab::rope

@@ -1,0 +1,263 @@
+// The soft body system: glue between the framework's Simulation and the exercises. Given.
+#include <algorithm>
+#include <cmath>
+
+#include <springlab/softbody/softbody.hpp>
+
+namespace springlab::softbody {
+
+SoftBody::SoftBody(int dim, SoftBodyParameters parameters) : Simulation(dim), p_(std::move(parameters)) {
+  // Equal masses over the vertices; springs along the edges, plus the extra ones asked for.
+  const int n = static_cast<int>(p_.mesh.vertices.size());
+  masses.assign(static_cast<size_t>(n), Mass{p_.totalMass / n, false});
+  springs = edgeSprings(p_.mesh, p_.springConstant, p_.springFriction);
+  if (p_.oppositeSprings) {
+    for (const Spring& s : oppositeSprings(p_.mesh, p_.extraSpringConstant, p_.extraSpringFriction)) springs.push_back(s);
+  }
+  if (p_.secondRingSprings) {
+    for (const Spring& s : secondRingSprings(p_.mesh, p_.extraSpringConstant, p_.extraSpringFriction)) springs.push_back(s);
+  }
+
+  // Faces must turn outward for the pressure to push out: turn over a mesh wound inward.
+  auto measure = [&](const SurfaceMesh& m) {
+    return dim == 3 ? enclosedVolume(m.vertices, m.triangles) : enclosedArea(m.vertices, m.segments);
+  };
+  if (measure(p_.mesh) < 0.0) p_.mesh = reversed(p_.mesh);
+  restVolume_ = measure(p_.mesh);
+  triangles = p_.mesh.triangles;
+  gravitation = p_.gravitation;
+  gravityY_ = p_.gravitation.y();
+  restPressure_ = restVolume_ > 0.0 ? p_.gas / restVolume_ : 0.0;
+
+  // At rest in the mesh's shape, moving as one.
+  state.pos = p_.mesh.vertices;
+  state.vel.assign(static_cast<size_t>(n), p_.velocity);
+  initialObstacles_ = p_.obstacles;
+  moved_.assign(p_.obstacles.size(), false);
+  markInitialState();
+}
+
+double SoftBody::volume(const State& s) const {
+  return dimension == 3 ? enclosedVolume(s.pos, triangles) : enclosedArea(s.pos, p_.mesh.segments);
+}
+
+double SoftBody::gas() const { return inflatedGas(p_.gas, pumpSteps_, p_.inflationSteps); }
+
+double SoftBody::pressure(const State& s) const { return p_.gas > 0.0 ? gasPressure(gas(), volume(s)) : 0.0; }
+
+Penetration SoftBody::penetration(const Vec3& x, const Obstacle& o) const {
+  switch (o.type) {
+    case ShapeType::Plane: return planePenetration(x, o.center, o.axis);
+    case ShapeType::Sphere: return spherePenetration(x, o.center, o.radius);
+    case ShapeType::Box: return boxPenetration(x, o.center, o.axis);
+    case ShapeType::Arrow: break;
+  }
+  return {};
+}
+
+void SoftBody::accumulateForces(const State& s, std::vector<Vec3>& f) {
+  // Springs along the surface and across it (exercise 3.1).
+  addSpringForces(s.pos, s.vel, springs, f);
+
+  // Weight and air drag on each mass.
+  for (int i = 0; i < numOfMasses(); ++i) f[i] += masses[i].m * gravitation - p_.airFriction * s.vel[i];
+
+  // The gas pushes every face outward (exercises 3.3 to 3.5).
+  if (p_.gas > 0.0) addPressureForces(s.pos, triangles, p_.mesh.segments, pressure(s), f);
+
+  // Wind on the faces (exercise 3.9).
+  if (p_.windDrag > 0.0) addWindForces(s.pos, s.vel, triangles, p_.mesh.segments, p_.wind, p_.windDrag, f);
+
+  // Penalty contact with every obstacle (exercises 3.6 and 3.7); projection acts in afterStep.
+  if (p_.contactMethod == ContactMethod::Penalty) {
+    const PhaseProfile::Scope phase(profile, Phase::kCollisions);
+    for (int i = 0; i < numOfMasses(); ++i) {
+      for (const Obstacle& o : p_.obstacles) {
+        const Penetration pen = penetration(s.pos[i], o);
+        if (pen.touching) f[i] += penaltyContactForce(pen, s.vel[i] - o.velocity, p_.contact);
+      }
+    }
+  }
+}
+
+double SoftBody::otherPotentialEnergy(const State& s) const {
+  // The gas's energy, and the energy stored in the penalty springs of the contacts.
+  double e = p_.gas > 0.0 ? gasEnergy(gas(), volume(s), restVolume_) : 0.0;
+  if (p_.contactMethod == ContactMethod::Penalty) {
+    for (const Vec3& x : s.pos) {
+      for (const Obstacle& o : p_.obstacles) {
+        const Penetration pen = penetration(x, o);
+        if (pen.touching) e += 0.5 * p_.contact.stiffness * pen.depth * pen.depth;
+      }
+    }
+  }
+  return e;
+}
+
+void SoftBody::afterStep(double dt) {
+  // One more step of pumping; an obstacle the user did not move in this step stands still.
+  ++pumpSteps_;
+  lastDt_ = dt;
+  for (size_t k = 0; k < p_.obstacles.size(); ++k) {
+    if (!moved_[k]) p_.obstacles[k].velocity.setZero();
+    moved_[k] = false;
+  }
+
+  // Projection: push each mass out of every obstacle and fix its velocity (exercise 3.8).
+  if (p_.contactMethod != ContactMethod::Projection) return;
+  const PhaseProfile::Scope phase(profile, Phase::kCollisions);
+  for (int i = 0; i < numOfMasses(); ++i) {
+    if (inverseMass(i) == 0.0) continue;
+    for (const Obstacle& o : p_.obstacles) {
+      const Penetration pen = penetration(state.pos[i], o);
+      if (!pen.touching) continue;
+      const PhasePoint out = projectContact({state.pos[i], state.vel[i]}, pen, o.velocity, p_.contact);
+      state.pos[i] = out.pos;
+      state.vel[i] = out.vel;
+    }
+  }
+}
+
+void SoftBody::onReset() {
+  pumpSteps_ = 0;
+  p_.obstacles = initialObstacles_;
+  moved_.assign(p_.obstacles.size(), false);
+}
+
+std::optional<int> SoftBody::floorIndex() const {
+  for (size_t k = 0; k < p_.obstacles.size(); ++k) {
+    const Obstacle& o = p_.obstacles[k];
+    if (o.type == ShapeType::Plane && o.axis.y() > 1.0 - 1e-9) return static_cast<int>(k);
+  }
+  return std::nullopt;
+}
+
+std::optional<double> SoftBody::groundHeight() const {
+  if (const auto k = floorIndex()) return p_.obstacles[*k].center.y();
+  return std::nullopt;
+}
+
+std::vector<int> SoftBody::drawnObstacles() const {
+  // The floor is drawn by the viewer as its ground; every other obstacle as a shape.
+  std::vector<int> drawn;
+  const auto floor = floorIndex();
+  for (int k = 0; k < static_cast<int>(p_.obstacles.size()); ++k) {
+    if (k != floor) drawn.push_back(k);
+  }
+  return drawn;
+}
+
+std::vector<Shape> SoftBody::shapes() const {
+  std::vector<Shape> out;
+  for (int k : drawnObstacles()) {
+    const Obstacle& o = p_.obstacles[k];
+    out.push_back(Shape{o.type, o.center, o.axis, o.radius, o.movable});
+  }
+  // The wind: an arrow above the body, as long as the body is wide at 10 m/s.
+  if (p_.windDrag > 0.0 && p_.wind.norm() > 0.0) {
+    const Bounds b = Simulation::reach();
+    const double size = (b.hi - b.lo).norm();
+    const Vec3 tail = Vec3(0.5 * (b.lo.x() + b.hi.x()), b.hi.y() + 0.25 * size, 0.5 * (b.lo.z() + b.hi.z()));
+    out.push_back(Shape{ShapeType::Arrow, tail, p_.wind * (0.05 * size), 0.0, false});
+  }
+  return out;
+}
+
+void SoftBody::moveShape(int index, const Vec3& center) {
+  const std::vector<int> drawn = drawnObstacles();
+  if (index < 0 || index >= static_cast<int>(drawn.size())) return;
+  Obstacle& o = p_.obstacles[drawn[index]];
+  if (!o.movable) return;
+  // The drag's velocity pushes the body as the contact sees it; its energy is the user's.
+  Vec3 target = center;
+  if (dimension == 2) target.z() = 0.0;
+  o.velocity = lastDt_ > 0.0 ? Vec3((target - o.center) / lastDt_) : Vec3(Vec3::Zero());
+  o.center = target;
+  moved_[drawn[index]] = true;
+  admitUserEnergy();
+}
+
+Bounds SoftBody::reach() const {
+  // The body, the obstacles that are not planes, and the floor under them.
+  Bounds b = Simulation::reach();
+  for (const Obstacle& o : p_.obstacles) {
+    const Vec3 half = o.type == ShapeType::Sphere ? Vec3::Constant(o.radius) : o.axis;
+    if (o.type == ShapeType::Plane) continue;
+    b.lo = b.lo.cwiseMin(o.center - half);
+    b.hi = b.hi.cwiseMax(o.center + half);
+  }
+  if (const auto floor = groundHeight()) b.lo.y() = std::min(b.lo.y(), *floor);
+  // In a wind, room downwind for the body to travel and above it for the wind's arrow.
+  if (p_.windDrag > 0.0 && p_.wind.norm() > 0.0) {
+    const double size = (b.hi - b.lo).norm();
+    const Vec3 downwind = b.lo + 2.0 * size * p_.wind.normalized();
+    b.lo = b.lo.cwiseMin(downwind);
+    b.hi = b.hi.cwiseMax(b.hi + 2.0 * size * p_.wind.normalized());
+    b.hi.y() += 0.5 * size;
+  }
+  if (dimension == 2) b.lo.z() = b.hi.z() = 0.0;
+  return b;
+}
+
+std::vector<Observable> SoftBody::observables() const {
+  const bool flat = dimension == 2;
+  const double v = volume(state);
+  return {
+      {flat ? "area" : "volume", flat ? "m^2" : "m^3", v},
+      {"pressure", flat ? "N/m" : "Pa", pressure(state)},
+      {"rest_volume_ratio", "", restVolume_ > 0.0 ? v / restVolume_ : 0.0},
+      {"gas nRT", "J", p_.gas > 0.0 ? gas() : 0.0},
+  };
+}
+
+std::vector<Parameter> SoftBody::parameters() {
+  // The pressure slider reaches four times the scene's pressure, or what would stretch the
+  // springs by about a radius when the scene has none.
+  const Bounds b = Simulation::reach();
+  const double radius = std::max(0.5 * (b.hi - b.lo).maxCoeff(), 1e-3);
+  const double top = 4.0 * std::max(p_.gas / std::max(restVolume_, 1e-12), p_.springConstant / radius);
+  return {
+      {"pressure at rest volume", dimension == 2 ? "N/m" : "Pa", &restPressure_, 0.0, top, false},
+      {"spring constant", "N/m", &p_.springConstant, 1.0, 1.0e6, true},
+      {"spring friction", "N s/m", &p_.springFriction, 0.0, 100.0, false},
+      {"contact stiffness", "N/m", &p_.contact.stiffness, 0.0, 1.0e6, false},
+      {"friction (mu)", "", &p_.contact.friction, 0.0, 2.0, false},
+      {"gravity y", "m/s^2", &gravityY_, -30.0, 30.0, false},
+  };
+}
+
+void SoftBody::parametersChanged() {
+  // The gas follows the pressure slider; edge springs share the body's constants.
+  p_.gas = restPressure_ * restVolume_;
+  for (Spring& s : springs) {
+    if (s.kind != kStructural) continue;
+    s.springConstant = p_.springConstant;
+    s.frictionConstant = p_.springFriction;
+  }
+  gravitation.y() = gravityY_;
+  admitUserEnergy();
+}
+
+double SoftBody::maxAngularFrequency() const {
+  // Springs by Gershgorin, plus at each mass the penalty contact spring and the stiffness the
+  // gas adds: a face's pressure force changes by about P times a neighbour's displacement
+  // times the edge it spans, so about P (sum of edge lengths at the mass) / 3 in 3D and 2 P
+  // in 2D (the gas's bulk modulus is P).
+  const double w = springMaxAngularFrequency(*this);
+  const double pressureNow = std::max(p_.gas > 0.0 ? p_.gas / std::max(restVolume_, 1e-12) : 0.0, 0.0);
+  std::vector<double> edgeLength(masses.size(), 0.0);
+  for (const Spring& s : springs) {
+    if (s.kind != kStructural) continue;
+    edgeLength[s.mass1] += s.springLength;
+    edgeLength[s.mass2] += s.springLength;
+  }
+  const double contact = p_.contactMethod == ContactMethod::Penalty && !p_.obstacles.empty() ? p_.contact.stiffness : 0.0;
+  double extra = 0.0;
+  for (int i = 0; i < numOfMasses(); ++i) {
+    const double gasStiffness = dimension == 2 ? 2.0 * pressureNow : pressureNow * edgeLength[i] / 3.0;
+    extra = std::max(extra, (contact + gasStiffness) / masses[i].m);
+  }
+  return std::sqrt(w * w + extra);
+}
+
+}  // namespace springlab::softbody
