@@ -5,7 +5,7 @@
 
 namespace springlab::softbody {
 
-double inflatedGas(double target, long step, int inflationSteps) {
+double inflatedGas(double target, double time, double inflationTime) {
   // TODO exercise 3.5 (pumping the gas in): write this part; see handouts/03_softbody.md, section Exercise 3.5.
   throw springlab::NotImplemented("3.5", "pumping the gas in", "handouts/03_softbody.md, section Exercise 3.5");
 }

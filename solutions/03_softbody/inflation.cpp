@@ -5,11 +5,11 @@
 
 namespace springlab::softbody {
 
-double inflatedGas(double target, long step, int inflationSteps) {
+double inflatedGas(double target, double time, double inflationTime) {
   // BEGIN EXERCISE 3.5
-  // A steady pump: equal parts per step until the target is in.
-  if (inflationSteps <= 0) return target;
-  const double fraction = std::clamp(static_cast<double>(step) / inflationSteps, 0.0, 1.0);
+  // A steady pump: the gas rises in proportion to the time pumped until the target is in.
+  if (inflationTime <= 0.0) return target;
+  const double fraction = std::clamp(time / inflationTime, 0.0, 1.0);
   return fraction * target;
   // END EXERCISE 3.5
 }

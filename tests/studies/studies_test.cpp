@@ -1,6 +1,9 @@
 // The study tools: resolution rules keep the physical object, observables, the advisor.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include <springlab/studies/resolution.hpp>
 
 #include "study_registry.hpp"
@@ -95,6 +98,32 @@ TEST(Advisor, GivesTheSameAnswerOnEveryRunAndACoarserOneForALooserTolerance) {
   EXPECT_LE(loose.chosenResolution, tight.chosenResolution);
   EXPECT_LT(looseCost, tightCost) << "a looser tolerance must allow a cheaper model: " << loose.snippet.dump()
                                   << " against " << tight.snippet.dump();
+}
+
+}  // namespace
+}  // namespace springlab
+
+namespace springlab {
+namespace {
+
+// Lab 3 pumps its gas over simulated seconds: a run at a quarter of the scene's dt (every
+// chart's reference run) holds the same gas at the same time, half the target half way.
+TEST(SoftBodyInflation, PumpsTheSameGasHistoryAtAnyTimeStep) {
+  const auto gasAt = [](double dt, double seconds) {
+    LoadedScene loaded = testing::allLabs().loadScene(std::string(SPRINGLAB_SOURCE_DIR) + "/scenes/softbody_ball.json");
+    const long steps = std::lround(seconds / dt);
+    for (long k = 0; k < steps; ++k) loaded.sim->operate(dt);
+    for (const Observable& o : loaded.sim->observables()) {
+      if (o.name == "gas nRT") return o.value;
+    }
+    ADD_FAILURE() << "the soft body reports no \"gas nRT\" observable";
+    return 0.0;
+  };
+  // softbody_ball.json: nRT = 30 J pumped in over 0.1 s, dt = 0.5 ms.
+  const double atSceneDt = gasAt(5e-4, 0.05);
+  const double atQuarterDt = gasAt(1.25e-4, 0.05);
+  EXPECT_NEAR(atSceneDt, 15.0, 1e-9) << "half way through the pumping time, half the target gas";
+  EXPECT_NEAR(atQuarterDt, atSceneDt, 1e-9) << "a smaller dt pumped another gas history";
 }
 
 }  // namespace

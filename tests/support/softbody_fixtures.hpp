@@ -19,7 +19,7 @@ inline softbody::SoftBodyParameters quietBody(SurfaceMesh mesh, double totalMass
   p.springConstant = k;
   p.springFriction = kd;
   p.gas = 0.0;
-  p.inflationSteps = 0;
+  p.inflationTime = 0.0;
   p.contact = {1000.0, 5.0, 0.0, 0.0};
   return p;
 }

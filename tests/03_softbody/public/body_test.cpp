@@ -19,7 +19,7 @@ SoftBodyParameters ballAboveTheFloor(double nRT, ContactMethod method) {
   SoftBodyParameters p = quietBody(icosphere(0.5, 2), 1.0, 100.0, 1.0);
   for (Vec3& v : p.mesh.vertices) v += Vec3(0, 0.55, 0);
   p.gas = nRT;
-  p.inflationSteps = 200;
+  p.inflationTime = 0.1;  // s: 200 steps of 0.5 ms
   p.gravitation = Vec3(0, -9.81, 0);
   p.airFriction = 0.005;
   p.contactMethod = method;

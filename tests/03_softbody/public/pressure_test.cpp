@@ -98,12 +98,12 @@ double ringEquilibriumRadius(int n, double r0, double k, double nRT) {
 
 TEST(RingEquilibrium, RadiusMatchesTheBalanceOfTensionAndPressure) {
   // The chapter's ring (17 points, radius 30, k = 400, kd = 15, m = 4 each) in zero gravity,
-  // pumped up over 200 steps and left to settle.
+  // pumped up over 2 s (200 steps) and left to settle.
   const int n = 17;
   const double r0 = 30.0, k = 400.0, nRT = 2.0e5;
   SoftBodyParameters p = quietBody(ringMesh(n, r0), 4.0 * n, k, 15.0);
   p.gas = nRT;
-  p.inflationSteps = 200;
+  p.inflationTime = 2.0;
   SoftBody ring(2, p);
   for (int step = 0; step < 4000; ++step) ring.operate(0.01);
 
@@ -123,13 +123,13 @@ TEST(RingEquilibrium, RadiusMatchesTheBalanceOfTensionAndPressure) {
 
 // ---- 3.5 ---------------------------------------------------------------------------------
 
-TEST(Inflation, RisesInEqualStepsToTheTargetAndStays) {
-  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 0, 100), 0.0) << "the pump starts from no gas";
-  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 1, 100), 5.0) << "one step of 100 pumps 1 % of the gas";
-  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 50, 100), 250.0) << "half way, half the gas";
-  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 100, 100), 500.0) << "after all steps, the target";
-  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 10000, 100), 500.0) << "the gas must stop at the target";
-  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 0, 0), 500.0) << "with no inflation steps the gas is there at once";
+TEST(Inflation, RisesLinearlyInTimeToTheTargetAndStays) {
+  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 0.0, 2.0), 0.0) << "the pump starts from no gas";
+  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 0.02, 2.0), 5.0) << "1 % of the pumping time pumps 1 % of the gas";
+  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 1.0, 2.0), 250.0) << "half way, half the gas";
+  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 2.0, 2.0), 500.0) << "after the pumping time, the target";
+  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 200.0, 2.0), 500.0) << "the gas must stop at the target";
+  EXPECT_DOUBLE_EQ(inflatedGas(500.0, 0.0, 0.0), 500.0) << "with no inflation time the gas is there at once";
 }
 
 TEST(Inflation, GasEnergyDecreasesAsPressureDoesWork) {
@@ -176,9 +176,10 @@ TEST(SoftBodyEnergy, BlowUpCheckStaysQuietWhileAStiffBallIsPumpedUp) {
   // started with; the blow-up check must count the gas and not call that a blow-up.
   SoftBodyParameters p = pressurisedBall(2, 2000.0, 0.5, 400.0);
   p.totalMass = 0.05;
-  p.inflationSteps = 100;
+  // Pumped over 100 steps of half the stable step (the stiffness does not depend on the gas).
+  const double dt = 0.5 * 2.0 / SoftBody(3, p).maxAngularFrequency();
+  p.inflationTime = 100 * dt;
   SoftBody ball(3, p);
-  const double dt = 0.5 * 2.0 / ball.maxAngularFrequency();
   EXPECT_NO_THROW(for (int step = 0; step < 3000; ++step) ball.operate(dt))
       << "a steadily pumped ball was taken for a blow-up";
   EXPECT_GT(ball.volume(ball.state), 1.1 * ball.restVolume()) << "test setup: the gas should have inflated the ball";

@@ -112,7 +112,7 @@ SoftBodyParameters readSoftBodyParameters(SceneReader& r, const SceneSettings& s
   // The gas and the air.
   SceneReader gas = r.object("gas");
   p.gas = gas.nonNegative("nRT");
-  p.inflationSteps = gas.integer("inflation_steps", 0);
+  p.inflationTime = gas.nonNegative("inflation_time");
   gas.rejectUnknownKeys();
   p.airFriction = r.nonNegative("air_friction");
   SceneReader wind = r.object("wind");

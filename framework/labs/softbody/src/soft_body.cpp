@@ -41,9 +41,10 @@ double SoftBody::volume(const State& s) const {
   return dimension == 3 ? enclosedVolume(s.pos, triangles) : enclosedArea(s.pos, p_.mesh.segments);
 }
 
-double SoftBody::gas() const { return inflatedGas(p_.gas, pumpSteps_, p_.inflationSteps); }
+double SoftBody::gas(double time) const { return inflatedGas(p_.gas, time, p_.inflationTime); }
+double SoftBody::gas() const { return gas(state.time); }
 
-double SoftBody::pressure(const State& s) const { return p_.gas > 0.0 ? gasPressure(gas(), volume(s)) : 0.0; }
+double SoftBody::pressure(const State& s) const { return p_.gas > 0.0 ? gasPressure(gas(s.time), volume(s)) : 0.0; }
 
 Penetration SoftBody::penetration(const Vec3& x, const Obstacle& o) const {
   switch (o.type) {
@@ -82,7 +83,7 @@ void SoftBody::accumulateForces(const State& s, std::vector<Vec3>& f) {
 
 double SoftBody::otherPotentialEnergy(const State& s) const {
   // The gas's energy, and the energy stored in the penalty springs of the contacts.
-  double e = p_.gas > 0.0 ? gasEnergy(gas(), volume(s), restVolume_) : 0.0;
+  double e = p_.gas > 0.0 ? gasEnergy(gas(s.time), volume(s), restVolume_) : 0.0;
   if (p_.contactMethod == ContactMethod::Penalty) {
     for (const Vec3& x : s.pos) {
       for (const Obstacle& o : p_.obstacles) {
@@ -95,8 +96,7 @@ double SoftBody::otherPotentialEnergy(const State& s) const {
 }
 
 void SoftBody::afterStep(double dt) {
-  // One more step of pumping; an obstacle the user did not move in this step stands still.
-  ++pumpSteps_;
+  // An obstacle the user did not move in this step stands still.
   lastDt_ = dt;
   for (size_t k = 0; k < p_.obstacles.size(); ++k) {
     if (!moved_[k]) p_.obstacles[k].velocity.setZero();
@@ -119,7 +119,6 @@ void SoftBody::afterStep(double dt) {
 }
 
 void SoftBody::onReset() {
-  pumpSteps_ = 0;
   p_.obstacles = initialObstacles_;
   moved_.assign(p_.obstacles.size(), false);
 }

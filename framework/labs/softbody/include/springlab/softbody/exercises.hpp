@@ -60,9 +60,10 @@ void addPressureForces(const std::vector<Vec3>& pos, const std::vector<Triangle>
                        const std::vector<Segment>& segments, double pressure, std::vector<Vec3>& f);
 
 // ---- Exercise 3.5: pumping the gas in ---------------------------------------------------
-// The gas nRT (J) after `step` steps of pumping: from 0 up to `target` in equal parts over
-// `inflationSteps` steps, then `target` (at once when inflationSteps is 0).
-double inflatedGas(double target, long step, int inflationSteps);
+// The gas nRT (J) after pumping for `time` seconds of simulated time: rising linearly from 0
+// to `target` over `inflationTime` seconds, then `target` (at once when inflationTime is 0).
+// Simulated time, not steps: a run at another dt pumps the same gas history.
+double inflatedGas(double target, double time, double inflationTime);
 // Potential energy of the gas at constant temperature, zero at the rest volume V0:
 //   U = -nRT ln(V / V0), so that -dU/dV = P. Zero when V <= 0 (no pressure there).
 double gasEnergy(double nRT, double volume, double restVolume);

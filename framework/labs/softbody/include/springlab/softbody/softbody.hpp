@@ -42,7 +42,7 @@ struct SoftBodyParameters {
   double extraSpringConstant = 0.0;    // N/m
   double extraSpringFriction = 0.0;    // N s/m
   double gas = 0.0;                    // J, target nRT
-  int inflationSteps = 0;              // steps to pump the gas in
+  double inflationTime = 0.0;          // s of simulated time to pump the gas in
   double airFriction = 0.0;            // N s/m per mass
   ContactMethod contactMethod = ContactMethod::Penalty;
   ContactMaterial contact;
@@ -73,7 +73,8 @@ class SoftBody final : public Simulation {
   std::vector<Obstacle>& obstacles() { return p_.obstacles; }
   double restVolume() const { return restVolume_; }
   double volume(const State& s) const;  // m^3 (m^2 in 2D)
-  double gas() const;                   // J, the nRT pumped in so far
+  double gas() const;                   // J, the nRT pumped in by the current state's time
+  double gas(double time) const;        // J, the nRT pumped in by `time` (s)
   double pressure(const State& s) const;  // Pa (N/m in 2D)
 
  protected:
@@ -89,7 +90,6 @@ class SoftBody final : public Simulation {
 
   SoftBodyParameters p_;
   double restVolume_ = 0.0;      // m^3, of the rest shape
-  long pumpSteps_ = 0;           // steps taken since the start: the gas pumped so far
   double restPressure_ = 0.0;    // Pa, the target gas over the rest volume: the panel's slider
   double gravityY_ = 0.0;        // m/s^2, the panel's slider
   std::vector<Obstacle> initialObstacles_;
