@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
-"""`springlab new-exercise` on a copy of this tree: every piece is written, the manifest and the
-handout agree, labs/ is fresh, the skeleton's stub names the exercise, every new file compiles
-(-fsyntax-only, warnings as errors), and bad input gives a clear error.
+"""`springlab new-exercise` on a copy of this tree: every piece is written where the lab layout
+wants it (the declaration in the framework's framework/labs/<name>/include/springlab/<name>/
+exercises.hpp, the reference in solutions/<dir>/, tests in tests/<dir>/), the manifest and the
+handout agree, labs/ is fresh (its copy of exercises.hpp declares the new function), the
+skeleton's stub names the exercise, every new file compiles (-fsyntax-only, warnings as errors)
+with only the framework's headers on the include path, as CMake builds them, and bad input
+gives a clear error.
 
     tests/grading/check_new_exercise.py --work build/tests/grading/new_exercise
 """
@@ -47,21 +51,35 @@ def main():
         stub = (tree / "labs" / lab.dir / "test_drag.cpp").read_text()
         if "throw springlab::NotImplemented" not in stub or "TODO exercise" not in stub:
             problems.append(f"the skeleton of the new exercise has no TODO and stub:\n{stub}")
-        # The oracle header as tests/CMakeLists.txt generates it.
+        given = tree / "framework" / "labs" / lab.name / "include"
+        headers = {h: given / "springlab" / lab.name / f"{h}.hpp" for h in ("exercises", lab.name)}
+        if "testDrag(" not in headers["exercises"].read_text():
+            problems.append(f"{headers['exercises'].relative_to(tree)}: testDrag is not declared")
+        if "testDrag(" not in (tree / "labs" / lab.dir / "exercises.hpp").read_text():
+            problems.append(f"labs/{lab.dir}/exercises.hpp: the generated copy does not declare testDrag")
+        # Only exercise files in the lab folders: nothing else was written to them.
+        for folder, allowed in ((tree / "solutions" / lab.dir, {".cpp"}),
+                                (tree / "labs" / lab.dir, {".cpp", "exercises.hpp", "README.md"})):
+            odd = [p.name for p in folder.iterdir() if p.suffix not in allowed and p.name not in allowed]
+            if odd:
+                problems.append(f"{folder.relative_to(tree)}: holds {', '.join(sorted(odd))} besides exercise files")
+        # The oracle header as tests/CMakeLists.txt generates it: both framework headers of the
+        # lab in one, the lab's namespace renamed.
         oracle = tree / "oracle"
         oracle.mkdir()
-        header = (tree / "solutions" / lab.dir / f"{lab.name}.hpp").read_text()
-        (oracle / f"oracle_{lab.name}.hpp").write_text(
-            header.replace(f"namespace springlab::{lab.name} ", f"namespace springlab::{lab.name}_reference "))
+        text = ""
+        for header in headers.values():
+            part = header.read_text().replace("#pragma once", "")
+            part = part.replace(f"#include <springlab/{lab.name}/exercises.hpp>", "")
+            text += part.replace(f"namespace springlab::{lab.name} ", f"namespace springlab::{lab.name}_reference ")
+        (oracle / f"oracle_{lab.name}.hpp").write_text(f"#pragma once\n{text}")
         flags = ["-std=c++20", "-fsyntax-only", "-Wall", "-Wextra", "-Wpedantic", "-Wshadow", "-Wconversion",
                  "-Wno-sign-conversion", "-Werror", "-Wno-unused-parameter", f"-I{tree / 'framework/include'}",
-                 "-isystem", "/usr/include/eigen3", f"-I{tree / 'tests/support'}", f"-I{oracle}"]
-        for source, include in ((f"solutions/{lab.dir}/test_drag.cpp", f"solutions/{lab.dir}"),
-                                (f"labs/{lab.dir}/test_drag.cpp", f"labs/{lab.dir}"),
-                                (f"tests/{lab.dir}/public/test_drag_test.cpp", f"labs/{lab.dir}"),
-                                (f"tests/{lab.dir}/hidden/test_drag_test.cpp", f"labs/{lab.dir}")):
-            result = subprocess.run(["c++", *flags, f"-I{tree / include}", str(tree / source)],
-                                    capture_output=True, text=True)
+                 f"-I{given}", "-isystem", "/usr/include/eigen3",
+                 f"-I{tree / 'tests/support'}", f"-I{oracle}"]
+        for source in (f"solutions/{lab.dir}/test_drag.cpp", f"labs/{lab.dir}/test_drag.cpp",
+                       f"tests/{lab.dir}/public/test_drag_test.cpp", f"tests/{lab.dir}/hidden/test_drag_test.cpp"):
+            result = subprocess.run(["c++", *flags, str(tree / source)], capture_output=True, text=True)
             if result.returncode != 0:
                 problems.append(f"{source} does not compile:\n{result.stderr[-3000:]}")
     # Bad input: a clear message and exit code 2.
