@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""`springlab new-exercise` on a copy of this tree, once in every lab: every piece is written where the lab layout
-wants it (the declaration in the framework's framework/labs/<name>/include/springlab/<name>/
-exercises.hpp, the reference in solutions/<dir>/, tests in tests/<dir>/), the manifest and the
+"""`springlab new-exercise` on a copy of this tree, once in every lab: every piece is written
+where the lab layout wants it (the declaration after the last exercise of the framework's
+framework/labs/<name>/include/springlab/<name>/exercises.hpp, the reference in
+solutions/<dir>/, tests in tests/<dir>/), the manifest and the
 handout agree, labs/ is fresh (its copy of exercises.hpp declares the new function), the
 skeleton's stub names the exercise, every new file compiles (-fsyntax-only, warnings as errors)
 with only the framework's headers on the include path, as CMake builds them, and bad input
