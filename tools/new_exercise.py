@@ -5,15 +5,20 @@ the course author only replaces the placeholders marked TODO(author).
 
     tools/new_exercise.py LAB NAME [--title TITLE]      e.g.  tools/new_exercise.py rope drag_force
 
-LAB is a lab's name (rope) or folder (01_rope); NAME a snake_case function name. Written:
-  solutions/<lab>/<name>.cpp            the reference, marked BEGIN/END EXERCISE <id>
-  solutions/<lab>/<lab name>.hpp        + the function's declaration
-  tests/<lab>/public/<name>_test.cpp    a public test (1 point)
-  tests/<lab>/hidden/<name>_test.cpp    a hidden test against the reference (1 point)
-  tests/<lab>/exercises.json            + the exercise and its two tests
-  handouts/<lab>.md                     + the exercise's section; the lab's total updated
-  labs/<lab>/                           regenerated (tools/make_skeleton.py)
-See handouts/authoring.md for the whole routine.
+LAB is a lab's name (rope) or folder (01_rope); NAME a snake_case function name. Written
+(<dir> is the lab's folder, 01_rope; <lab> its name, rope):
+  solutions/<dir>/<name>.cpp            the reference, marked BEGIN/END EXERCISE <id>; it
+                                        includes <springlab/<lab>/exercises.hpp>
+  framework/labs/<lab>/include/springlab/<lab>/exercises.hpp
+                                        + the function's declaration, after the last exercise
+  tests/<dir>/public/<name>_test.cpp    a public test (1 point)
+  tests/<dir>/hidden/<name>_test.cpp    a hidden test against the reference (1 point)
+  tests/<dir>/exercises.json            + the exercise and its two tests
+  handouts/<dir>.md                     + the exercise's section; the lab's total updated
+  labs/<dir>/                           regenerated (tools/make_skeleton.py): the stub, the copy
+                                        of exercises.hpp, README.md
+The lab's given code (framework/labs/<lab>/src/) is not touched: if the simulation is to use
+the new function, call it there yourself. See handouts/authoring.md for the whole routine.
 """
 import argparse
 import json
@@ -59,8 +64,8 @@ def scaffold(which, name, title):
     lab, folder = find_lab(which)
     manifest_path = ROOT / "tests" / folder / "exercises.json"
     handout_path = ROOT / "handouts" / f"{folder}.md"
-    header_path = ROOT / "solutions" / folder / f"{lab}.hpp"
-    for path in (manifest_path, handout_path, header_path):
+    header_path = exercises_header(lab)
+    for path in (manifest_path, handout_path, header_path, ROOT / "solutions" / folder):
         if not path.exists():
             raise ScaffoldError(f"{path}: missing; every lab has it")
     try:
@@ -80,17 +85,17 @@ def scaffold(which, name, title):
             raise ScaffoldError(f"{path}: already exists; pick another NAME")
     if any(t["name"].split(".")[0] == suite for ex in manifest["exercises"] for t in ex["tests"]):
         raise ScaffoldError(f"{manifest_path}: a test suite named {suite} exists already; pick another NAME")
-    values = dict(lab=lab, folder=folder, id=ex_id, func=func, suite=suite, title=title)
+    values = dict(lab=lab, folder=folder, id=ex_id, func=func, suite=suite, title=title, file=f"{name}.cpp")
 
-    # The declaration goes above the lab's given code, or at the end of its namespace.
+    # The declaration goes where the framework's exercise header ends its exercises: after the
+    # last "// ---- Exercise" block, before the next "// ---- " block or the end of the lab's
+    # namespace, whichever comes first.
     header = header_path.read_text()
     declaration = DECLARATION.format(**values, rule="-" * max(4, 80 - len(f"// ---- Exercise {ex_id}: {title} ")))
-    marker = header.find("// ---- Given")
+    marker = declaration_point(header, lab)
     if marker < 0:
-        marker = header.rfind(f"}}  // namespace springlab::{lab}")
-    if marker < 0:
-        raise ScaffoldError(f"{header_path}: cannot find where to declare {func} (no '// ---- Given' line and no "
-                            f"'}}  // namespace springlab::{lab}')")
+        raise ScaffoldError(f"{header_path.relative_to(ROOT)}: cannot find where to declare {func} (no "
+                            f"'}}  // namespace springlab::{lab}' line)")
     new_header = header[:marker] + declaration + "\n" + header[marker:]
 
     # The manifest: one more exercise, written in the file's own compact style.
@@ -123,12 +128,34 @@ def scaffold(which, name, title):
     manifest_path.write_text(new_text)
     handout_path.write_text(new_handout)
     try:
-        for path, body in make_skeleton.generate(folder).items():
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(body)
+        generated = make_skeleton.generate(folder)
     except make_skeleton.SkeletonError as error:
         raise ScaffoldError(f"regenerating labs/{folder}: {error}") from None
-    return ex_id, [*files, header_path, manifest_path, handout_path, ROOT / "labs" / folder / f"{name}.cpp"]
+    changed = []
+    for path, body in generated.items():
+        if not path.exists() or path.read_text() != body:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(body)
+            changed.append(path)
+    return ex_id, [*files, header_path, manifest_path, handout_path, *changed]
+
+
+def declaration_point(header, lab):
+    """Where a new exercise's declaration goes in the lab's exercise header: the offset of the
+    line that follows the last exercise's block, or -1."""
+    end = header.rfind(f"}}  // namespace springlab::{lab}")
+    if end < 0:
+        return -1
+    exercises = list(re.finditer(r"^// ---- Exercise .*$", header[:end], re.M))
+    if not exercises:
+        return end
+    after = re.search(r"^// ---- ", header[exercises[-1].end():end], re.M)
+    return exercises[-1].end() + after.start() if after else end
+
+
+def exercises_header(lab):
+    """The framework's header that declares a lab's exercises (the student's contract)."""
+    return ROOT / "framework" / "labs" / lab / "include" / "springlab" / lab / "exercises.hpp"
 
 
 DECLARATION = """// ---- Exercise {id}: {title} {rule}
@@ -136,7 +163,7 @@ DECLARATION = """// ---- Exercise {id}: {title} {rule}
 Vec3 {func}(const Vec3& x, double k);
 """
 
-SOLUTION = """#include "{lab}.hpp"
+SOLUTION = """#include <springlab/{lab}/exercises.hpp>
 
 namespace springlab::{lab} {{
 
@@ -155,7 +182,7 @@ PUBLIC = """// Exercise {id}: {title}. TODO(author): checks of the physics, each
 
 #include <algorithm>
 
-#include "{lab}.hpp"
+#include <springlab/{lab}/{lab}.hpp>
 #include "seeded.hpp"
 
 namespace springlab::{lab} {{
@@ -181,8 +208,8 @@ HIDDEN = """// Hidden test of exercise {id}: the student's {func} against the re
 // The message names the inputs, never the reference's answer.
 #include <gtest/gtest.h>
 
-#include "{lab}.hpp"
-#include "oracle_{lab}.hpp"  // generated by tests/CMakeLists.txt
+#include <springlab/{lab}/{lab}.hpp>
+#include "oracle_{lab}.hpp"  // generated by tests/CMakeLists.txt from the framework's lab headers
 #include "seeded.hpp"
 
 namespace springlab::{lab} {{
@@ -206,8 +233,8 @@ TEST_F(MatchesReference{suite}, OnRandomInputs) {{
 
 HANDOUT = """### Exercise {id}: {title} (2 points)
 
-File `labs/{folder}/{func_file}`, function `{func}`. TODO(author): what to compute, the section of
-the physics it builds on, and what to watch out for.
+File `labs/{folder}/{file}`, function `{func}` (declared in `exercises.hpp`). TODO(author): what
+to compute, the section of the physics it builds on, and what to watch out for.
 
 Public tests:
 - `{suite}.MatchesItsDefinition`: TODO(author): what it checks, in physics terms.
@@ -223,8 +250,6 @@ def main():
     ap.add_argument("name", help="snake_case name of the function and its file (drag_force)")
     ap.add_argument("--title", help="the exercise's title in the handout and the reports")
     args = ap.parse_args()
-    global HANDOUT
-    HANDOUT = HANDOUT.replace("{func_file}", f"{args.name}.cpp")
     try:
         ex_id, written = scaffold(args.lab, args.name, args.title)
     except ScaffoldError as error:
@@ -233,7 +258,9 @@ def main():
     print(f"exercise {ex_id} scaffolded; written or updated:")
     for path in written:
         print(f"  {path.relative_to(ROOT)}")
-    print("next: replace each TODO(author), then `./springlab test` (see handouts/authoring.md)")
+    lab, _ = find_lab(args.lab)
+    print(f"next: replace each TODO(author); if the simulation is to use the function, call it from the lab's "
+          f"given code in framework/labs/{lab}/src/; then `./springlab test` (see handouts/authoring.md)")
     return 0
 
 

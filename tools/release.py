@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
-"""Write the tree a student receives: framework, labs/ (generated afresh from solutions/),
-public tests, handouts, scenes, README and the entry script. Never solutions/, hidden tests,
-the grader's own tests and tools, or the course author's notes.
+"""Write the tree a student receives: the framework (with each lab's given code in
+framework/labs/<name>/, compiled once), labs/ generated afresh from solutions/ (per lab only
+the exercise .cpp stubs, the copy of exercises.hpp and README.md), public tests, handouts,
+scenes, README and the entry script. Never solutions/, hidden tests, the grader's own tests
+and tools, or the course author's notes.
 
     tools/release.py OUT            OUT must not exist, or be an empty folder
     tools/release.py OUT --force    replace OUT
@@ -29,7 +31,8 @@ INSTRUCTOR_ONLY = [
     "tools/make_skeleton.py",
     "handouts/authoring.md",
     ".ci", ".ci/*",
-    "labs", "labs/*",                  # written afresh from solutions/ instead
+    "labs", "labs/*",                  # written afresh from solutions/ instead, so a file
+                                       # left in labs/ by hand never ships
 ]
 NEVER_DIRS = ["build*", "out", ".git", "__pycache__", ".cache", ".vscode", ".idea"]
 NEVER_FILES = ["*.pyc"]
@@ -88,6 +91,11 @@ def release(out, force=False):
                 written += 1
     except make_skeleton.SkeletonError as error:
         raise ReleaseError(f"generating labs/: {error}") from None
+    # Each lab's given code ships in the framework, or the release cannot build.
+    for lab in labs:
+        given = out / "framework" / "labs" / make_skeleton.lab_name(lab)
+        if not (given / "src").is_dir() or not any(given.rglob("*.hpp")):
+            raise ReleaseError(f"{given.relative_to(out)}: lab {lab}'s given code is missing from the release")
     return out, written, labs
 
 
@@ -106,8 +114,8 @@ def main():
     except ReleaseError as error:
         print(f"springlab release: {error}", file=sys.stderr)
         return 2
-    print(f"student release written to {out}: {written} files, labs {', '.join(labs)}; "
-          f"no solutions/, no hidden tests")
+    print(f"student release written to {out}: {written} files, labs {', '.join(labs)} (exercise stubs in labs/, "
+          f"given code in framework/labs/); no solutions/, no hidden tests")
     return 0
 
 

@@ -1,12 +1,18 @@
 #!/usr/bin/env python3
-"""`springlab new-exercise` on a copy of this tree: every piece is written, the manifest and the
-handout agree, labs/ is fresh, the skeleton's stub names the exercise, every new file compiles
-(-fsyntax-only, warnings as errors), and bad input gives a clear error.
+"""`springlab new-exercise` on a copy of this tree, once in every lab: every piece is written
+where the lab layout wants it (the declaration after the last exercise of the framework's
+framework/labs/<name>/include/springlab/<name>/exercises.hpp, the reference in
+solutions/<dir>/, tests in tests/<dir>/), the manifest and the
+handout agree, labs/ is fresh (its copy of exercises.hpp declares the new function), the
+skeleton's stub names the exercise, every new file compiles (-fsyntax-only, warnings as errors)
+with only the framework's headers on the include path, as CMake builds them, and bad input
+gives a clear error.
 
     tests/grading/check_new_exercise.py --work build/tests/grading/new_exercise
 """
 import argparse
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -15,6 +21,61 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 import release  # noqa: E402
 import submission  # noqa: E402
+
+
+def scaffold_and_compile(tree, lab, run):
+    """new-exercise LAB test_drag in the scratch tree: the pieces agree and compile."""
+    problems = []
+    header_path = tree / "framework" / "labs" / lab.name / "include" / "springlab" / lab.name / "exercises.hpp"
+    last_exercise = max(m.start() for m in re.finditer(r"^// ---- Exercise ", header_path.read_text(), re.M))
+    made = run(tree / "tools/new_exercise.py", lab.name, "test_drag", "--title", "test drag")
+    print(made.stdout + made.stderr)
+    if made.returncode != 0:
+        return [f"new-exercise {lab.name} failed"]
+    checks = [(tree / "tools/make_skeleton.py", "--check", lab.dir),
+              (tree / "tools/grade.py", "--manifest", tree / "tests" / lab.dir / "exercises.json",
+               "--check-handout", tree / "handouts" / f"{lab.dir}.md")]
+    for check in checks:
+        result = run(*check)
+        if result.returncode != 0:
+            problems.append(f"{' '.join(map(str, check))}: {result.stdout}{result.stderr}")
+    stub = (tree / "labs" / lab.dir / "test_drag.cpp").read_text()
+    if "throw springlab::NotImplemented" not in stub or "TODO exercise" not in stub:
+        problems.append(f"the skeleton of the new exercise has no TODO and stub:\n{stub}")
+    given = tree / "framework" / "labs" / lab.name / "include"
+    headers = {h: given / "springlab" / lab.name / f"{h}.hpp" for h in ("exercises", lab.name)}
+    declared = headers["exercises"].read_text().find("Vec3 testDrag(")
+    if declared < last_exercise:
+        problems.append(f"{headers['exercises'].relative_to(tree)}: testDrag is not declared after the last exercise")
+    if "testDrag(" not in (tree / "labs" / lab.dir / "exercises.hpp").read_text():
+        problems.append(f"labs/{lab.dir}/exercises.hpp: the generated copy does not declare testDrag")
+    # Only exercise files in the lab folders: nothing else was written to them.
+    for folder, allowed in ((tree / "solutions" / lab.dir, {".cpp"}),
+                            (tree / "labs" / lab.dir, {".cpp", "exercises.hpp", "README.md"})):
+        odd = [p.name for p in folder.iterdir() if p.suffix not in allowed and p.name not in allowed]
+        if odd:
+            problems.append(f"{folder.relative_to(tree)}: holds {', '.join(sorted(odd))} besides exercise files")
+    # The oracle header as tests/CMakeLists.txt generates it: both framework headers of the
+    # lab in one, the lab's namespace renamed.
+    oracle = tree / "oracle" / lab.name
+    oracle.mkdir(parents=True)
+    text = ""
+    for header in headers.values():
+        part = header.read_text().replace("#pragma once", "")
+        part = part.replace(f"#include <springlab/{lab.name}/exercises.hpp>", "")
+        text += part.replace(f"namespace springlab::{lab.name} ", f"namespace springlab::{lab.name}_reference ")
+    (oracle / f"oracle_{lab.name}.hpp").write_text(f"#pragma once\n{text}")
+    # Only the framework's headers (and the tests' support) on the include path, as CMake does.
+    flags = ["-std=c++20", "-fsyntax-only", "-Wall", "-Wextra", "-Wpedantic", "-Wshadow", "-Wconversion",
+             "-Wno-sign-conversion", "-Werror", "-Wno-unused-parameter", "-Wno-unknown-pragmas",
+             f"-I{tree / 'framework/include'}", f"-I{given}", "-isystem", "/usr/include/eigen3",
+             f"-I{tree / 'tests/support'}", f"-I{oracle}"]
+    for source in (f"solutions/{lab.dir}/test_drag.cpp", f"labs/{lab.dir}/test_drag.cpp",
+                   f"tests/{lab.dir}/public/test_drag_test.cpp", f"tests/{lab.dir}/hidden/test_drag_test.cpp"):
+        result = subprocess.run(["c++", *flags, str(tree / source)], capture_output=True, text=True)
+        if result.returncode != 0:
+            problems.append(f"{source} does not compile:\n{result.stderr[-3000:]}")
+    return problems
 
 
 def main():
@@ -26,44 +87,16 @@ def main():
     for rel in release.source_files():
         (tree / rel).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(ROOT / rel, tree / rel)
-    lab = submission.discover_labs()[0]
+    labs = submission.discover_labs()
     problems = []
 
     def run(*argv):
         return subprocess.run([sys.executable, *map(str, argv)], capture_output=True, text=True, cwd=tree)
 
-    made = run(tree / "tools/new_exercise.py", lab.name, "test_drag", "--title", "test drag")
-    print(made.stdout + made.stderr)
-    if made.returncode != 0:
-        problems.append("new-exercise failed")
-    else:
-        checks = [(tree / "tools/make_skeleton.py", "--check", lab.dir),
-                  (tree / "tools/grade.py", "--manifest", tree / "tests" / lab.dir / "exercises.json",
-                   "--check-handout", tree / "handouts" / f"{lab.dir}.md")]
-        for check in checks:
-            result = run(*check)
-            if result.returncode != 0:
-                problems.append(f"{' '.join(map(str, check))}: {result.stdout}{result.stderr}")
-        stub = (tree / "labs" / lab.dir / "test_drag.cpp").read_text()
-        if "throw springlab::NotImplemented" not in stub or "TODO exercise" not in stub:
-            problems.append(f"the skeleton of the new exercise has no TODO and stub:\n{stub}")
-        # The oracle header as tests/CMakeLists.txt generates it.
-        oracle = tree / "oracle"
-        oracle.mkdir()
-        header = (tree / "solutions" / lab.dir / f"{lab.name}.hpp").read_text()
-        (oracle / f"oracle_{lab.name}.hpp").write_text(
-            header.replace(f"namespace springlab::{lab.name} ", f"namespace springlab::{lab.name}_reference "))
-        flags = ["-std=c++20", "-fsyntax-only", "-Wall", "-Wextra", "-Wpedantic", "-Wshadow", "-Wconversion",
-                 "-Wno-sign-conversion", "-Werror", "-Wno-unused-parameter", f"-I{tree / 'framework/include'}",
-                 "-isystem", "/usr/include/eigen3", f"-I{tree / 'tests/support'}", f"-I{oracle}"]
-        for source, include in ((f"solutions/{lab.dir}/test_drag.cpp", f"solutions/{lab.dir}"),
-                                (f"labs/{lab.dir}/test_drag.cpp", f"labs/{lab.dir}"),
-                                (f"tests/{lab.dir}/public/test_drag_test.cpp", f"labs/{lab.dir}"),
-                                (f"tests/{lab.dir}/hidden/test_drag_test.cpp", f"labs/{lab.dir}")):
-            result = subprocess.run(["c++", *flags, f"-I{tree / include}", str(tree / source)],
-                                    capture_output=True, text=True)
-            if result.returncode != 0:
-                problems.append(f"{source} does not compile:\n{result.stderr[-3000:]}")
+    # One new exercise in every lab: each lab's exercise header ends its exercises differently.
+    for lab in labs:
+        problems += scaffold_and_compile(tree, lab, run)
+    lab = labs[0]
     # Bad input: a clear message and exit code 2.
     for argv, words in ((("no_such_lab", "x_force"), "no lab 'no_such_lab'"),
                         ((lab.name, "Bad-Name"), "snake_case"),
@@ -74,7 +107,7 @@ def main():
     for problem in problems:
         print(f"PROBLEM: {problem}", file=sys.stderr)
     if not problems:
-        print("new-exercise: scaffold consistent, compiles, bad input refused")
+        print(f"new-exercise: scaffold consistent and compiles in {len(labs)} labs, bad input refused")
     return 1 if problems else 0
 
 
