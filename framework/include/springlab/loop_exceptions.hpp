@@ -3,7 +3,9 @@
 // std::terminate (SIGABRT) instead of letting it reach the caller. A student's missing
 // exercise (NotImplemented) or a bad value thrown inside a parallel loop would then abort
 // the viewer or a test instead of being reported. Each iteration runs through run(), which
-// keeps the first exception; rethrow() after the loop throws it on the calling thread.
+// keeps the first exception (or a catch block around a thread's whole share calls
+// capture()); rethrow() after the loop throws it on the calling thread. The first thread to
+// fail keeps its exception; the others are dropped.
 #include <atomic>
 #include <exception>
 
@@ -18,9 +20,12 @@ class LoopExceptions {
     try {
       body();
     } catch (...) {
-      // The first thread to fail keeps its exception; the others are dropped.
-      if (!thrown_.exchange(true)) first_ = std::current_exception();
+      capture();
     }
+  }
+  // Keep the exception being handled (call inside a catch block that wraps a whole loop).
+  void capture() noexcept {
+    if (!thrown_.exchange(true)) first_ = std::current_exception();
   }
   // Throw the kept exception, if any (call after the loop, outside the parallel region).
   void rethrow() {

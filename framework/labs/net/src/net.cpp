@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <springlab/loop_exceptions.hpp>
 #include <springlab/net/net.hpp>
 
@@ -11,6 +15,7 @@ namespace springlab::net {
 namespace {
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 constexpr int kStretchPasses = 10;  // Gauss-Seidel passes of stretch limiting per step
+
 }  // namespace
 
 Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
@@ -96,16 +101,30 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
   // Springs (exercise 2.7), in the order of `springs`; the wind stays explicit. Each pair is
   // written once (resize leaves them unset), by whichever thread computes it.
   J.pairs.resize(springs.size());
+  // Each thread takes one contiguous block of springs (as schedule(static) would) inside one
+  // try: a missing exercise 2.7 reaches the caller instead of std::terminate, and the loop
+  // stays as tight as a plain one (a handler per spring or per chunk cost 35-45 % more
+  // instructions in this loop).
   const int count = static_cast<int>(springs.size());
-  LoopExceptions exceptions;  // a missing exercise 2.7 reaches the caller, not std::terminate
-#pragma omp parallel for schedule(static) if (count > kParallelSprings)
-  for (int k = 0; k < count; ++k) {
-    exceptions.run([&] {
-      const Spring& sp = springs[static_cast<std::size_t>(k)];
-      const SpringJacobian sj =
-          springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant, sp.springLength, sp.frictionConstant);
-      J.pairs[static_cast<std::size_t>(k)] = ForceJacobian::Pair(sp.mass1, sp.mass2, sj.dx, sj.dv);
-    });
+  LoopExceptions exceptions;
+#pragma omp parallel if (count > kParallelSprings)
+  {
+    int first = 0, last = count;
+#ifdef _OPENMP
+    const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
+    first = static_cast<int>(static_cast<long>(count) * thread / threads);
+    last = static_cast<int>(static_cast<long>(count) * (thread + 1) / threads);
+#endif
+    try {
+      for (int k = first; k < last; ++k) {
+        const Spring& sp = springs[static_cast<std::size_t>(k)];
+        const SpringJacobian sj =
+            springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant, sp.springLength, sp.frictionConstant);
+        J.pairs[static_cast<std::size_t>(k)] = ForceJacobian::Pair(sp.mass1, sp.mass2, sj.dx, sj.dv);
+      }
+    } catch (...) {
+      exceptions.capture();
+    }
   }
   exceptions.rethrow();
   // Air friction, -c m v on each mass.
