@@ -27,7 +27,7 @@ import zipfile
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
-import submission  # noqa: E402
+from springlab_grader.labs import discover_labs  # noqa: E402
 
 # The exercise every sabotage replaces: explicit Euler's step of Lab 1, called by its own
 # tests and by the hidden whole-rope trajectory test, so a broken one fails the same tests
@@ -298,7 +298,7 @@ def main():
     if run.returncode != 0:
         print(f"grade-all failed with exit code {run.returncode}", file=sys.stderr)
         return 1
-    labs = submission.discover_labs()
+    labs = discover_labs()
     problems = check(out, expect, labs)
     for mark in marks:
         for place in (pathlib.Path(mark), work / mark, work.parent / mark, pathlib.Path("/tmp") / mark):

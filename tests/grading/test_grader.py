@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Unit tests of the grader's pieces: manifests, handout agreement, hidden-test redaction, zip
-safety, outputs (Gradescope results.json, JUnit XML), submission folders."""
+"""Unit tests of the grader's pieces (tools/springlab_grader/): manifests, handout agreement,
+hidden-test redaction, zip safety, outputs (Gradescope results.json, JUnit XML), submission
+folders, the link file CMake writes."""
 import json
 import pathlib
 import stat
@@ -12,8 +13,8 @@ import zipfile
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
-import grade  # noqa: E402
-import submission  # noqa: E402
+from springlab_grader import build_cache, errors, gtest_runner, integrity, labs, manifest, reports, results  # noqa: E402
+from springlab_grader import submission  # noqa: E402
 
 MANIFEST = {"lab": "09_toy", "title": "Lab 9: toy", "handout": "handouts/09_toy.md", "exercises": [
     {"id": "9.1", "title": "one", "tests": [{"name": "A.B", "points": 2, "visibility": "visible"},
@@ -36,65 +37,65 @@ class Temp(unittest.TestCase):
 
 class ManifestErrorsNameFileAndField(Temp):
     def test_valid(self):
-        m = grade.load_manifest(self.manifest(MANIFEST))
+        m = manifest.load_manifest(self.manifest(MANIFEST))
         self.assertEqual(m["points"], 3)
         self.assertEqual(m["exercises"][0]["points"], 3)
 
     def test_missing_points(self):
         data = json.loads(json.dumps(MANIFEST))
         del data["exercises"][0]["tests"][1]["points"]
-        with self.assertRaisesRegex(grade.ManifestError, r"exercises.json: exercises\[0\]\.tests\[1\]\.points: missing"):
-            grade.load_manifest(self.manifest(data))
+        with self.assertRaisesRegex(manifest.ManifestError, r"exercises.json: exercises\[0\]\.tests\[1\]\.points: missing"):
+            manifest.load_manifest(self.manifest(data))
 
     def test_bad_visibility(self):
         data = json.loads(json.dumps(MANIFEST))
         data["exercises"][0]["tests"][0]["visibility"] = "secret"
-        with self.assertRaisesRegex(grade.ManifestError, r"tests\[0\]\.visibility: must be one of"):
-            grade.load_manifest(self.manifest(data))
+        with self.assertRaisesRegex(manifest.ManifestError, r"tests\[0\]\.visibility: must be one of"):
+            manifest.load_manifest(self.manifest(data))
 
     def test_duplicate_and_negative(self):
         data = json.loads(json.dumps(MANIFEST))
         data["exercises"][0]["tests"][1]["name"] = "A.B"
-        with self.assertRaisesRegex(grade.ManifestError, "declared twice"):
-            grade.load_manifest(self.manifest(data))
+        with self.assertRaisesRegex(manifest.ManifestError, "declared twice"):
+            manifest.load_manifest(self.manifest(data))
         data["exercises"][0]["tests"][1]["points"] = -1
-        with self.assertRaisesRegex(grade.ManifestError, "must be >= 0"):
-            grade.load_manifest(self.manifest(data))
+        with self.assertRaisesRegex(manifest.ManifestError, "must be >= 0"):
+            manifest.load_manifest(self.manifest(data))
 
     def test_not_json(self):
         path = self.tmp / "exercises.json"
         path.write_text("{")
-        with self.assertRaisesRegex(grade.ManifestError, "exercises.json: not valid JSON"):
-            grade.load_manifest(path)
+        with self.assertRaisesRegex(manifest.ManifestError, "exercises.json: not valid JSON"):
+            manifest.load_manifest(path)
 
     def test_handout_points_must_agree(self):
-        m = grade.load_manifest(self.manifest(MANIFEST))
+        m = manifest.load_manifest(self.manifest(MANIFEST))
         handout = self.tmp / "h.md"
         handout.write_text("Worth 3 points.\n### Exercise 9.1: one (2 points)\n")
-        self.assertIn("missing the heading line '### Exercise 9.1: one (3 points)'", grade.check_handout(m, handout)[0])
+        self.assertIn("missing the heading line '### Exercise 9.1: one (3 points)'", manifest.check_handout(m, handout)[0])
         handout.write_text("Worth 3 points.\n### Exercise 9.1: one (3 points)\n")
-        self.assertEqual(grade.check_handout(m, handout), [])
+        self.assertEqual(manifest.check_handout(m, handout), [])
 
     def test_every_lab_of_this_tree_agrees(self):
-        for lab in submission.discover_labs():
-            self.assertEqual(grade.check_handout(lab.manifest, ROOT / lab.manifest["handout"]), [])
+        for lab in labs.discover_labs():
+            self.assertEqual(manifest.check_handout(lab.manifest, ROOT / lab.manifest["handout"]), [])
 
 
 class HiddenMessagesShowNoValues(unittest.TestCase):
     def test_gtest_value_lines_dropped(self):
         eq = ("Expected equality of these values:\n  got.masses.size()\n    Which is: 3\n  want.masses.size()\n"
               "    Which is: 4\nwrong number of masses for a rope of 4 masses (seed 1)")
-        self.assertEqual(grade.redact(eq), "wrong number of masses for a rope of 4 masses (seed 1)")
+        self.assertEqual(gtest_runner.redact(eq), "wrong number of masses for a rope of 4 masses (seed 1)")
         lt = "Expected: (relativeError(a, b)) < (kTolerance), actual: 0.25 vs 1e-09\nspring force is wrong for x = (1, 2, 3)"
-        self.assertEqual(grade.redact(lt), "spring force is wrong for x = (1, 2, 3)")
+        self.assertEqual(gtest_runner.redact(lt), "spring force is wrong for x = (1, 2, 3)")
         near = ("The difference between a.k and b.k is 2, which exceeds 1e-9, where\na.k evaluates to 3,\n"
                 "b.k evaluates to 5, and\n1e-9 evaluates to 1e-09.\nspring 2 has the wrong stiffness")
-        self.assertEqual(grade.redact(near), "spring 2 has the wrong stiffness")
+        self.assertEqual(gtest_runner.redact(near), "spring 2 has the wrong stiffness")
         truth = "Value of: sameEnds\n  Actual: false\nExpected: true\nspring 1 joins the wrong masses"
-        self.assertEqual(grade.redact(truth), "spring 1 joins the wrong masses")
+        self.assertEqual(gtest_runner.redact(truth), "spring 1 joins the wrong masses")
 
     def test_no_message_left(self):
-        self.assertIn("values are not shown", grade.redact("Expected: (x) < (y), actual: 1 vs 2"))
+        self.assertIn("values are not shown", gtest_runner.redact("Expected: (x) < (y), actual: 1 vs 2"))
 
 
 class ZipsStayInside(Temp):
@@ -120,7 +121,7 @@ class ZipsStayInside(Temp):
     def test_not_a_zip(self):
         bad = self.tmp / "bad.zip"
         bad.write_text("no")
-        with self.assertRaisesRegex(submission.GradeError, "bad.zip: not a readable zip file"):
+        with self.assertRaisesRegex(errors.GradeError, "bad.zip: not a readable zip file"):
             submission.safe_extract(bad, self.tmp, [])
 
 
@@ -130,12 +131,12 @@ class Outputs(unittest.TestCase):
         m["points"] = 3
         ex = m["exercises"][0]
         ex["points"] = 3
-        results = [grade.TestResult(ex, ex["tests"][0], True, "", 0.1),
-                   grade.TestResult(ex, ex["tests"][1], False, "wrong for x = 1", 0.2)]
-        return grade.LabResult(m, results, ["a note"])
+        outcomes = [results.TestResult(ex, ex["tests"][0], True, "", 0.1),
+                    results.TestResult(ex, ex["tests"][1], False, "wrong for x = 1", 0.2)]
+        return results.LabResult(m, outcomes, ["a note"])
 
     def test_results_json_has_gradescope_fields(self):
-        data = grade.gradescope_results([self.lab()], 1.5, 42)
+        data = reports.gradescope_results([self.lab()], 1.5, 42)
         self.assertEqual((data["score"], data["max_score"], data["execution_time"]), (2, 3, 1.5))
         t = data["tests"][1]
         self.assertEqual({k: t[k] for k in ("number", "score", "max_score", "visibility", "status")},
@@ -144,13 +145,13 @@ class Outputs(unittest.TestCase):
         self.assertIn("SPRINGLAB_SEED=42", data["output"])
 
     def test_junit(self):
-        root = ET.fromstring(grade.junit_xml([self.lab()], 1.0).split("?>", 1)[1])
+        root = ET.fromstring(reports.junit_xml([self.lab()], 1.0).split("?>", 1)[1])
         suite = root.find("testsuite")
         self.assertEqual((suite.get("tests"), suite.get("failures")), ("2", "1"))
         self.assertEqual(root.findall(".//failure")[0].text, "wrong for x = 1")
 
     def test_markdown_per_exercise(self):
-        text = grade.report_markdown([self.lab()], "Grade of x", 1)
+        text = reports.report_markdown([self.lab()], "Grade of x", 1)
         self.assertIn("### Exercise 9.1: one (2 / 3 points)", text)
         self.assertIn("a note", text)
 
@@ -159,22 +160,65 @@ class SubmissionFolders(Temp):
     def test_duplicate_students(self):
         (self.tmp / "ann").mkdir()
         (self.tmp / "ann.zip").write_bytes(b"")
-        with self.assertRaisesRegex(submission.GradeError, "two submissions for ann"):
+        with self.assertRaisesRegex(errors.GradeError, "two submissions for ann"):
             submission.submissions_in(self.tmp)
 
     def test_empty_class(self):
-        with self.assertRaisesRegex(submission.GradeError, "holds no submission"):
+        with self.assertRaisesRegex(errors.GradeError, "holds no submission"):
             submission.submissions_in(self.tmp)
 
     def test_lab_found_at_any_depth(self):
-        lab = submission.discover_labs()[0]
+        lab = labs.discover_labs()[0]
         (self.tmp / "repo" / "labs" / lab.dir).mkdir(parents=True)
         (self.tmp / "deeper" / "x" / lab.dir).mkdir(parents=True)
         self.assertEqual(submission.find_lab_folder(self.tmp, lab), self.tmp / "repo" / "labs" / lab.dir)
 
     def test_depfile(self):
-        self.assertEqual(submission.parse_depfile("obj/a.o: src/a.cpp \\\n /usr/x\\ y.h src/b.hpp\n"),
+        self.assertEqual(integrity.parse_depfile("obj/a.o: src/a.cpp \\\n /usr/x\\ y.h src/b.hpp\n"),
                          ["src/a.cpp", "/usr/x y.h", "src/b.hpp"])
+
+
+LINK = {"about": "test", "lab": "toy", "compiler": "/usr/bin/c++", "flags": ["-O3", "", "SHELL:-a b", "LINKER:-z,defs"],
+        "test_objects": ["/b/t1.o", "/b/main.o"], "given_objects": ["/b/g.o"], "oracle": "/b/liboracle.a",
+        "libraries": ["/b/libgtest.a", "/b/liboracle.a", "", "/b/libcore.a"], "skeleton_program": "/b/toy_grading_student"}
+
+
+class LinkFileFromCMake(Temp):
+    def write(self, data):
+        path = self.tmp / "toy_link.json"
+        path.write_text(data if isinstance(data, str) else json.dumps(data))
+        return path
+
+    def test_link_line(self):
+        link = build_cache.read_link_file(self.write(LINK))
+        self.assertEqual(link.flags, ["-O3", "-a", "b", "-Wl,-z,defs"])  # empty items dropped, CMake prefixes expanded
+        self.assertEqual((link.oracle, link.given_objects), ("/b/liboracle.a", ["/b/g.o"]))
+        self.assertEqual(link.argv("/w/libstudent.a", "/w/out"),
+                         ["/usr/bin/c++", "-O3", "-a", "b", "-Wl,-z,defs", "/b/t1.o", "/b/main.o", "-o", "/w/out",
+                          "/w/libstudent.a", "/b/libgtest.a", "/b/liboracle.a", "/b/libcore.a"])
+
+    def test_no_oracle(self):
+        self.assertEqual(build_cache.read_link_file(self.write(dict(LINK, oracle=""))).oracle, "")
+
+    def test_missing_file(self):
+        with self.assertRaisesRegex(errors.GradeError, r"nowhere_link\.json: missing; .*configure the build again"):
+            build_cache.read_link_file(self.tmp / "nowhere_link.json")
+
+    def test_not_json(self):
+        path = self.write('{"compiler": "/usr/bin/c++", "flags": ["-O3",]}')
+        with self.assertRaisesRegex(errors.GradeError, r"toy_link\.json: not valid JSON"):
+            build_cache.read_link_file(path)
+        with self.assertRaisesRegex(errors.GradeError, r"toy_link\.json: not a JSON object"):
+            build_cache.read_link_file(self.write("[1]"))
+
+    def test_bad_fields(self):
+        without = {k: v for k, v in LINK.items() if k != "compiler"}
+        with self.assertRaisesRegex(errors.GradeError, r"toy_link\.json: compiler: missing, or not a string"):
+            build_cache.read_link_file(self.write(without))
+        with self.assertRaisesRegex(errors.GradeError, r"toy_link\.json: libraries: missing, or not a list of strings"):
+            build_cache.read_link_file(self.write(dict(LINK, libraries="/b/libcore.a")))
+        with self.assertRaisesRegex(errors.GradeError, r"toy_link\.json: test_objects: empty"):
+            build_cache.read_link_file(self.write(dict(LINK, test_objects=[""])))
 
 
 if __name__ == "__main__":

@@ -1,0 +1,229 @@
+"""The instructor build the grader compiles and links submissions with (build-grader/, built
+once and reused): configuring and building it, each lab's compile flags (from CMake's
+compile_commands.json), its link (from grading/<name>_link.json, which tests/CMakeLists.txt
+writes with file(GENERATE)), the symbols the integrity checks protect, and the cache of
+compiled exercise objects, keyed by everything a compile reads."""
+import dataclasses
+import functools
+import hashlib
+import json
+import os
+import pathlib
+import shlex
+import shutil
+import subprocess
+import threading
+
+from .errors import GradeError
+from .gtest_runner import listed_tests
+from .integrity import defined_symbols
+from .labs import ROOT
+from .sandbox import tail
+
+
+# ---- the link CMake writes -------------------------------------------------------------------
+@dataclasses.dataclass
+class LinkFile:
+    """grading/<name>_link.json: the link of the lab's grading program, less the student's
+    archive, which goes first among the libraries."""
+    path: pathlib.Path
+    compiler: str
+    flags: list            # before the objects
+    test_objects: list     # the public and hidden tests and the grading main
+    given_objects: list    # the lab's given code, archived with the student's exercise objects
+    oracle: str            # the reference "oracle" library; "" when the tree has none
+    libraries: list        # after the student's archive, in link order
+    skeleton_program: str  # the grading program CMake linked with the released skeleton
+
+    def argv(self, student_archive, output):
+        return [self.compiler, *self.flags, *self.test_objects, "-o", str(output), str(student_archive),
+                *self.libraries]
+
+
+def expand_link_option(option):
+    """One entry of a CMake LINK_OPTIONS list as arguments: `SHELL:a b` is two arguments,
+    `LINKER:a,b` goes to the linker (-Wl,a,b), anything else is itself."""
+    if option.startswith("LINKER:"):
+        rest = option[len("LINKER:"):]
+        parts = shlex.split(rest[len("SHELL:"):]) if rest.startswith("SHELL:") else rest.split(",")
+        return ["-Wl," + ",".join(parts)]
+    if option.startswith("SHELL:"):
+        return shlex.split(option[len("SHELL:"):])
+    return [option]
+
+
+def read_link_file(path):
+    """Read and check a CMake-written grading/<name>_link.json; errors name the file."""
+    path = pathlib.Path(path)
+    again = "configure the build again (cmake -S <tree> -B <build>)"
+    try:
+        data = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise GradeError(f"{path}: missing; is this a build of this tree? ({again})") from None
+    except OSError as error:
+        raise GradeError(f"{path}: cannot read: {error.strerror}") from None
+    except ValueError as error:
+        raise GradeError(f"{path}: not valid JSON ({error}); {again}") from None
+    if not isinstance(data, dict):
+        raise GradeError(f"{path}: not a JSON object; {again}")
+    fields = {}
+    for field in dataclasses.fields(LinkFile)[1:]:
+        value = data.get(field.name)
+        if field.type is list:
+            if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+                raise GradeError(f"{path}: {field.name}: missing, or not a list of strings; {again}")
+            # An item CMake evaluated to nothing is an empty string.
+            value = [arg for v in value if v for arg in expand_link_option(v)]
+        elif not isinstance(value, str):
+            raise GradeError(f"{path}: {field.name}: missing, or not a string; {again}")
+        fields[field.name] = value
+    for needed in ("compiler", "test_objects", "skeleton_program"):
+        if not fields[needed]:
+            raise GradeError(f"{path}: {needed}: empty; {again}")
+    return LinkFile(path, **fields)
+
+
+# ---- one lab's compile and link --------------------------------------------------------------
+@dataclasses.dataclass
+class LabBuild:
+    compile_argv: list      # compiler and flags, without -I of the lab, -o, -c
+    link: LinkFile
+    tests_present: set
+    oracle_symbols: set     # strong symbols the reference "oracle" defines
+    protected_symbols: set  # strong symbols of the framework, GoogleTest and the grading main
+
+    @property
+    def given_objects(self):
+        return self.link.given_objects
+
+
+def compile_flags(commands, lab, where):
+    """The compile flags of the lab's exercise objects (springlab_<name>_student_objects) from
+    compile_commands.json, without -o, -c, -Werror (a warning in student code is reported,
+    never fatal) and the -I of the skeleton folder."""
+    target = f"springlab_{lab.name}_student"
+    entry = next((c for c in commands if f"/{target}_objects.dir/" in c.get("command", "")), None)
+    if entry is None:
+        raise GradeError(f"{where}: no compile command for {target}; was the lab built?")
+    flags, skip = [], False
+    for arg in shlex.split(entry["command"]):
+        if skip:
+            skip = False
+            continue
+        if arg in ("-o", "-c"):
+            skip = True
+            continue
+        if arg == "-Werror":
+            continue
+        if arg.startswith("-I") and pathlib.PurePath(arg[2:]).parts[-2:] == ("labs", lab.dir):
+            continue
+        flags.append(arg)
+    return flags
+
+
+# ---- the object cache ------------------------------------------------------------------------
+@functools.lru_cache(maxsize=None)
+def include_digest(flags):
+    """A digest of every header in the compile's include folders inside the project tree."""
+    digest = hashlib.sha256()
+    for flag in flags:
+        if not flag.startswith("-I"):
+            continue
+        folder = pathlib.Path(flag[2:])
+        if not folder.is_absolute() or not folder.is_dir() or folder == pathlib.Path("/usr/include"):
+            continue
+        for header in sorted(folder.rglob("*")):
+            if header.is_file() and header.suffix in (".hpp", ".h", ".hh", ".inl"):
+                digest.update(str(header).encode() + b"\0" + header.read_bytes())
+    return digest.digest()
+
+
+class ObjectCache:
+    """Compiled exercise files (object and dependency file) of earlier submissions, in a folder
+    only the grader can open, keyed by the flags, the file's name and bytes and the headers."""
+
+    def __init__(self, folder):
+        self.folder = pathlib.Path(folder)
+        self.folder.mkdir(exist_ok=True)
+        os.chmod(self.folder, 0o700)
+
+    @staticmethod
+    def key(flags, name, data, headers):
+        # The key covers the instructor's headers too: an object compiled against an older
+        # Simulation (another vtable) must never be linked with the new framework.
+        headers += include_digest(tuple(flags))
+        return hashlib.sha256(json.dumps(flags).encode() + b"\0" + name.encode() + b"\0" + data + headers).hexdigest()
+
+    def fetch(self, key, into, name):
+        """Copy a cached compile to into/<name>.o and .d; its object, or None."""
+        cached, deps = self.folder / f"{key}.o", self.folder / f"{key}.d"
+        if cached.exists() and deps.exists():
+            shutil.copyfile(cached, into / f"{name}.o")
+            shutil.copyfile(deps, into / f"{name}.d")
+            return into / f"{name}.o"
+        return None
+
+    def store(self, key, obj, deps):
+        for source, target in ((obj, self.folder / f"{key}.o"), (deps, self.folder / f"{key}.d")):
+            temporary = target.with_name(f"{target.name}.{os.getpid()}.{threading.get_ident()}")
+            shutil.copyfile(source, temporary)
+            os.replace(temporary, target)  # whole or absent, for graders running side by side
+
+
+# ---- the cache build -------------------------------------------------------------------------
+class Cache:
+    """The instructor build: framework, reference oracle and the grading tests' objects."""
+
+    def __init__(self, path, labs, build=True, jobs=2):
+        self.path = pathlib.Path(path).resolve()
+        self.labs = labs
+        if build:
+            self.build(jobs)
+        commands = self.path / "compile_commands.json"
+        if not commands.exists():
+            raise GradeError(f"{commands}: missing; is {self.path} a build of this tree "
+                             f"(configured with CMAKE_EXPORT_COMPILE_COMMANDS)?")
+        self.commands = json.loads(commands.read_text())
+        self.objects = ObjectCache(self.path / "grader-objects")
+        self.lab_builds = {}
+        self.lock = threading.Lock()
+
+    def build(self, jobs):
+        env = dict(os.environ)
+        env.setdefault("CCACHE_BASEDIR", str(ROOT))
+        if not (self.path / "CMakeCache.txt").exists():
+            configure = ["cmake", "-S", str(ROOT), "-B", str(self.path), "-DCMAKE_BUILD_TYPE=Release",
+                         "-DSPRINGLAB_BUILD_VIEWER=OFF"]
+            if shutil.which("ccache"):
+                configure.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
+            run = subprocess.run(configure, capture_output=True, text=True, env=env)
+            if run.returncode != 0:
+                raise GradeError(f"configuring the grading build {self.path} failed:\n{run.stdout}{run.stderr}")
+        targets = [t for lab in self.labs for t in ("--target", f"{lab.name}_grading_student")]
+        run = subprocess.run(["cmake", "--build", str(self.path), "-j", str(jobs), *targets],
+                             capture_output=True, text=True, env=env)
+        if run.returncode != 0:
+            raise GradeError(f"building the grading build {self.path} failed (the instructor tree does not build):\n"
+                             + tail(run.stdout + run.stderr, 40))
+
+    def link_file(self, lab):
+        return self.path / "grading" / f"{lab.name}_link.json"
+
+    def lab(self, lab, sandbox):
+        """What compiling and linking this lab's grading program needs, found once."""
+        with self.lock:
+            if lab.name not in self.lab_builds:
+                self.lab_builds[lab.name] = self._lab_build(lab, sandbox)
+            return self.lab_builds[lab.name]
+
+    def _lab_build(self, lab, sandbox):
+        flags = compile_flags(self.commands, lab, self.path)
+        link = read_link_file(self.link_file(lab))
+        protected = [*link.test_objects, *link.given_objects,
+                     *(f for f in link.libraries if f.endswith((".a", ".o")) and not f.startswith("-")
+                       and f != link.oracle)]
+        if not os.access(link.skeleton_program, os.X_OK):
+            raise GradeError(f"{link.skeleton_program}: missing; was {lab.name}_grading_student built?")
+        present = set(listed_tests(link.skeleton_program, sandbox))
+        return LabBuild(flags, link, present, defined_symbols([link.oracle]) if link.oracle else set(),
+                        defined_symbols(protected))

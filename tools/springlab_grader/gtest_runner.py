@@ -1,0 +1,162 @@
+"""Running a GoogleTest grading program: listing its tests, running each alone in the sandbox,
+and trusting only the report the grading main (tests/support/grading_main.cpp) sends on the
+private results channel, signed with a nonce handed to it for that run. Hidden tests' messages
+lose the values GoogleTest printed. Also the seed of the random test inputs."""
+import concurrent.futures
+import dataclasses
+import json
+import os
+import random
+import re
+import secrets
+import signal
+
+from .manifest import ManifestError
+from .results import TestResult
+from .sandbox import run_sandboxed, tail
+
+
+@dataclasses.dataclass
+class Outcome:
+    passed: bool
+    message: str
+    seconds: float
+
+
+def run_test(binary, name, seed, sandbox):
+    """Run one GoogleTest test alone; trust only the nonce-signed report on the channel."""
+    nonce = secrets.token_hex(32)
+    run = run_sandboxed([binary, f"--gtest_filter={name}", "--gtest_color=no"], sandbox,
+                        {"SPRINGLAB_SEED": str(seed)}, nonce=nonce)
+    report = None
+    lines = run.channel.decode("utf-8", "replace").splitlines()
+    for line in lines:
+        try:
+            message = json.loads(line)
+        except ValueError:
+            continue
+        if isinstance(message, dict) and message.get("nonce") == nonce:
+            report = message
+    if run.returncode is None:
+        return Outcome(False, f"timed out after {sandbox.timeout:g} s: an infinite loop, or far too much work", run.seconds)
+    if run.returncode < 0:
+        return Outcome(False, f"crashed: {signal_name(-run.returncode)}\n{tail(run.output)}", run.seconds)
+    if report is None or len(lines) != 1:
+        return Outcome(False, f"the test process ended (exit code {run.returncode}) without the grader's report: "
+                              f"exit() or a crash inside the code under test\n{tail(run.output)}", run.seconds)
+    tests = [t for t in report.get("tests", []) if isinstance(t, dict)]
+    if len(tests) != 1 or tests[0].get("name") != name:
+        return Outcome(False, "the test did not run (not found in the test program)", run.seconds)
+    status, failures = tests[0].get("status"), [str(f) for f in tests[0].get("failures", [])]
+    if status == "passed" and run.returncode == 0:
+        return Outcome(True, "", run.seconds)
+    if failures:
+        return Outcome(False, "\n".join(clean(f) for f in failures), run.seconds)
+    if status == "skipped":
+        return Outcome(False, "skipped: a skipped test earns no points", run.seconds)
+    return Outcome(False, f"the test passed but its process then exited with code {run.returncode}", run.seconds)
+
+
+def signal_name(number):
+    names = {signal.SIGSEGV: "segmentation fault (SIGSEGV): an invalid memory access, or a stack overflow from "
+                             "too deep a recursion",
+             signal.SIGABRT: "aborted (SIGABRT): abort(), a failed assert, or an exception nobody caught",
+             signal.SIGFPE: "arithmetic error (SIGFPE), e.g. an integer division by zero",
+             signal.SIGKILL: "killed (SIGKILL): the memory or CPU time limit",
+             signal.SIGXCPU: "CPU time limit exceeded (SIGXCPU)",
+             signal.SIGXFSZ: "wrote more output than allowed (SIGXFSZ)",
+             signal.SIGBUS: "bus error (SIGBUS): an invalid memory access"}
+    return names.get(number, f"signal {number}")
+
+
+def clean(failure):
+    # Drop the source location line GoogleTest puts first; students want the physics.
+    lines = failure.splitlines()
+    if lines and re.match(r"^\S+:\d+$", lines[0]):
+        lines = lines[1:]
+    return "\n".join(lines)
+
+
+# GoogleTest's own lines that print compared values; in a hidden test those may be the
+# reference's, so they are dropped and only the test's physics message is kept.
+_VALUE_LINES = re.compile(r"^\s*(Which is:|Expected:|Actual:|Value of:|Expected equality of these values:|"
+                          r"The difference between|Expected: \(|  Actual:|[^ ].* evaluates to |"
+                          r"tol evaluates to|With diff:|Google Test trace:)")
+
+
+def redact(message):
+    """A hidden test's message without the values GoogleTest printed (they may be the reference's)."""
+    kept, skipping = [], False
+    for line in message.splitlines():
+        if _VALUE_LINES.match(line) or re.match(r"^.*, actual: .* vs .*$", line):
+            skipping = skipping or line.strip().startswith("Expected equality")
+            continue
+        if skipping and line.startswith("  "):
+            continue  # the operand lines of "Expected equality of these values:"
+        skipping = False
+        kept.append(line)
+    text = "\n".join(kept).strip()
+    return text or "does not match the reference solution (the values are not shown for hidden tests)"
+
+
+def listed_tests(binary, sandbox):
+    """The tests a grading program holds (listed under the sandbox: listing runs its code too)."""
+    run = run_sandboxed([binary, "--gtest_list_tests"], dataclasses.replace(sandbox, timeout=60))
+    if run.returncode != 0:
+        raise ManifestError(f"{binary}: --gtest_list_tests failed (exit code {run.returncode}):\n{tail(run.output)}")
+    names, suite = [], None
+    for line in run.output.splitlines():
+        if not line.strip() or line.startswith("Running main()"):
+            continue
+        if not line.startswith(" "):
+            suite = line.split("#")[0].strip()
+        else:
+            names.append(suite + line.split("#")[0].strip())
+    return names
+
+
+def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=None):
+    """Run every manifest test the binary holds, side by side; results in manifest order."""
+    present = set(present if present is not None else listed_tests(binary, sandbox))
+    # A student's own build has no hidden tests; those are left out there, not failed.
+    todo = [(ex, t) for ex in manifest["exercises"] for t in ex["tests"]
+            if t["name"] in present or t["visibility"] == "visible"]
+
+    def one(item):
+        ex, t = item
+        if t["name"] not in present:
+            outcome = Outcome(False, "this test is not in the test program (a hidden test in a student build?)", 0.0)
+        else:
+            outcome = run_test(binary, t["name"], seed, sandbox)
+        message = redact(outcome.message) if t["visibility"] != "visible" and outcome.message else outcome.message
+        result = TestResult(ex, t, outcome.passed, message, outcome.seconds)
+        if on_result:
+            on_result(result)
+        return result
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        return list(pool.map(one, todo))
+
+
+def check_binary_against_manifest(binary, manifest, manifest_path, sandbox, student_build=False):
+    """Every test in the binary carries points; every visible manifest test exists."""
+    present = set(listed_tests(binary, sandbox))
+    declared = {t["name"] for ex in manifest["exercises"] for t in ex["tests"]}
+    unpointed = sorted(present - declared)
+    if unpointed:
+        raise ManifestError(f"{manifest_path}: tests without points: {', '.join(unpointed)}")
+    wanted = [t["name"] for ex in manifest["exercises"] for t in ex["tests"]
+              if not student_build or t["visibility"] == "visible"]
+    missing = sorted(n for n in wanted if n not in present)
+    if missing:
+        raise ManifestError(f"{binary}: manifest tests not found in the binary: {', '.join(missing)}")
+    return present
+
+
+def draw_seed(given=None):
+    """--seed, else SPRINGLAB_SEED from the environment (to replay a run), else drawn."""
+    if given is not None:
+        return given
+    if os.environ.get("SPRINGLAB_SEED", "").isdigit():
+        return int(os.environ["SPRINGLAB_SEED"])
+    return random.randrange(2**32)

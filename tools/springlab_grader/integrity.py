@@ -1,0 +1,90 @@
+"""Checks of a submission's compiled exercise files, run on the trusted side: a file that
+includes anything outside the submission and the framework (solutions/, hidden tests), calls
+the reference "oracle", or redefines the framework's, GoogleTest's or the grading main's
+symbols is graded as the released skeleton's file, and the report says why."""
+import pathlib
+import re
+import subprocess
+
+from .labs import exercises_in
+
+
+def defined_symbols(files):
+    """Global symbols the files define strongly (weak ones, inline functions, may repeat)."""
+    files = [str(f) for f in files if f]
+    if not files:
+        return set()
+    run = subprocess.run(["nm", "-g", "--defined-only", "-P", *files], capture_output=True, text=True)
+    return {parts[0] for parts in (line.split() for line in run.stdout.splitlines())
+            if len(parts) >= 2 and parts[1] in "TDBRG" and not parts[0].endswith(":")}
+
+
+def undefined_symbols(obj):
+    run = subprocess.run(["nm", "-u", "-P", str(obj)], capture_output=True, text=True)
+    return {line.split()[0] for line in run.stdout.splitlines() if line.strip()}
+
+
+def demangle(symbols):
+    run = subprocess.run(["c++filt"], input="\n".join(sorted(symbols)), capture_output=True, text=True)
+    return run.stdout.split("\n")[:len(symbols)] if run.returncode == 0 else sorted(symbols)
+
+
+def parse_depfile(text):
+    body = text.replace("\\\n", " ")
+    _, _, deps = body.partition(": ")
+    return [d.replace("\\ ", " ") for d in re.split(r"(?<!\\)\s+", deps.strip()) if d]
+
+
+def allowed_folders(work, compile_argv):
+    """The submission's own files, the include folders of the lab's flags, the system's."""
+    allowed = [(work / "src").resolve(), pathlib.Path("/usr")]
+    allowed += [pathlib.Path(f[2:] if f.startswith("-I") else f).resolve()
+                for i, f in enumerate(compile_argv)
+                if f.startswith("-I") or (i > 0 and compile_argv[i - 1] == "-isystem")]
+    return allowed
+
+
+def outside_includes(work, flags, name, compile_argv):
+    """The first file src/<name> includes from outside the allowed folders (names only: the
+    compiler's error messages could quote such a file)."""
+    run = subprocess.run(flags + ["-M", "-MG", f"src/{name}"], cwd=work, capture_output=True, text=True)
+    allowed = allowed_folders(work, compile_argv)
+    for dep in parse_depfile(run.stdout):
+        path = pathlib.Path(dep)
+        resolved = (work / path).resolve() if not path.is_absolute() else path.resolve()
+        if not any(resolved.is_relative_to(folder) for folder in allowed):
+            return dep
+    return None
+
+
+def find_cheats(objects, work, build, lab, notes):
+    """Files to grade as the skeleton's: they include the instructor's files, call the
+    reference solution, or redefine the framework's, GoogleTest's or the grader's symbols.
+    `objects` are the compiled files (with their .d files beside them), `build` the lab's
+    LabBuild; each finding is added to notes."""
+    allowed = allowed_folders(work, build.compile_argv)
+    flagged = {}
+    for obj in objects:
+        name = obj.name[:-2]
+        deps = obj.with_suffix(".d")
+        for dep in parse_depfile(deps.read_text()) if deps.exists() else []:
+            path = pathlib.Path(dep)
+            resolved = (work / path).resolve() if not path.is_absolute() else path.resolve()
+            inside = any(resolved.is_relative_to(folder) for folder in allowed)
+            if not inside:
+                flagged.setdefault(name, f"includes {dep}, a file outside the submission and the framework")
+                break
+        used = undefined_symbols(obj) & build.oracle_symbols
+        if used:
+            flagged.setdefault(name, "calls the reference solution (" + ", ".join(demangle(used)[:3]) + ")")
+        defined = defined_symbols([obj]) & build.protected_symbols
+        if defined:
+            flagged.setdefault(name, "redefines symbols of the framework, GoogleTest or the grader ("
+                               + ", ".join(demangle(defined)[:3]) + ")")
+    for name, why in flagged.items():
+        lost = exercises_in(lab.solution / name)
+        what = f"exercise {', '.join(lost)} scores 0" if lost else "it was left out"
+        notes.append(f"{name} {why}: it is graded as the released skeleton's {name}, so {what}"
+                     if name in {p.name for p in lab.skeleton.iterdir()} else
+                     f"{name} {why}: it was left out of the build")
+    return sorted(flagged)

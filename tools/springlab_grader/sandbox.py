@@ -1,0 +1,142 @@
+"""The sandbox every untrusted process runs in: limits on time, CPU, memory, stack, file size
+and open files; the user `nobody` when the grader runs as root; a fresh private folder; its own
+process group, killed whole afterwards; an optional private results channel (two pipes)."""
+import dataclasses
+import os
+import pathlib
+import pwd
+import resource
+import select
+import signal
+import subprocess
+import tempfile
+import time
+
+TIMEOUT = 20.0  # seconds per test; each takes well under a second
+
+
+@dataclasses.dataclass
+class Sandbox:
+    """Limits and the user every test process runs with."""
+    timeout: float = TIMEOUT
+    memory_mb: int = 4096    # address space; 0 = none (AddressSanitizer builds need none)
+    stack_mb: int = 64
+    file_mb: int = 64
+    drop_to: str = "nobody"  # the user tests run as when the grader is root
+
+    def identity(self):
+        if os.geteuid() != 0 or not self.drop_to:
+            return None
+        user = pwd.getpwnam(self.drop_to)
+        return user.pw_uid, user.pw_gid
+
+    def limits(self):
+        mib = 1 << 20
+        cpu = int(self.timeout) + 2
+        pairs = [(resource.RLIMIT_CPU, cpu), (resource.RLIMIT_STACK, self.stack_mb * mib),
+                 (resource.RLIMIT_FSIZE, self.file_mb * mib), (resource.RLIMIT_CORE, 0),
+                 (resource.RLIMIT_NOFILE, 256)]
+        if self.memory_mb:
+            pairs.append((resource.RLIMIT_AS, self.memory_mb * mib))
+        if self.identity():
+            pairs.append((resource.RLIMIT_NPROC, 512))  # counts the sandbox user's processes only
+        return pairs
+
+
+@dataclasses.dataclass
+class Run:
+    """What one sandboxed process did."""
+    returncode: int | None  # None: killed at the time limit
+    seconds: float
+    output: str             # stdout and stderr, the end of it
+    channel: bytes          # what arrived on the results channel
+
+
+def run_sandboxed(argv, sandbox, env_extra=None, nonce=None, cwd=None):
+    """Run argv under the sandbox in cwd (default: a fresh folder); with a nonce, open the
+    results channel."""
+    ids = sandbox.identity()
+    with tempfile.TemporaryDirectory(prefix="springlab-run-") as private:
+        # The output file lives in the grader's private folder; the test writes it only
+        # through its stdout and stderr, up to the file size limit.
+        os.chmod(private, 0o711)  # the sandbox user may enter, not list
+        work = pathlib.Path(private) / "cwd"
+        work.mkdir()
+        if ids:
+            os.chown(work, *ids)
+        if cwd is not None:
+            work = pathlib.Path(cwd)
+        log = open(pathlib.Path(private) / "output.txt", "w+b")
+        home = pathlib.Path(private) / "cwd"
+        # One thread per test: the grader runs tests side by side, and OpenMP threads that
+        # wait for a busy core would only make each test slower.
+        env = {"PATH": "/usr/bin:/bin", "HOME": str(home), "LANG": "C.UTF-8", "TMPDIR": str(home),
+               "OMP_NUM_THREADS": "1"}
+        env.update(env_extra or {})
+        fds = ()
+        if nonce is not None:
+            nonce_r, nonce_w = os.pipe()
+            result_r, result_w = os.pipe()
+            os.write(nonce_w, nonce.encode())
+            os.close(nonce_w)
+            env["SPRINGLAB_RESULT_CHANNEL"] = f"{nonce_r}:{result_w}"
+            fds = (nonce_r, result_w)
+        limits = sandbox.limits()
+
+        def in_child():
+            for which, value in limits:
+                resource.setrlimit(which, (value, value))
+
+        start = time.monotonic()
+        proc = subprocess.Popen(argv, cwd=work, env=env, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
+                                pass_fds=fds, process_group=0, preexec_fn=in_child,
+                                user=ids[0] if ids else None, group=ids[1] if ids else None,
+                                extra_groups=[] if ids else None)
+        channel = b""
+        deadline = start + sandbox.timeout
+        if nonce is not None:
+            os.close(fds[0])
+            os.close(fds[1])
+            channel = read_until_closed(result_r, deadline)
+            os.close(result_r)
+        try:
+            code = proc.wait(timeout=max(0.0, deadline - time.monotonic()))
+        except subprocess.TimeoutExpired:
+            code = None
+        # Whatever the test left running in its process group goes too.
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
+            pass
+        if code is None:
+            proc.wait()
+        seconds = time.monotonic() - start
+        log.seek(0, os.SEEK_END)
+        size = log.tell()
+        log.seek(max(0, size - 8192))
+        output = log.read().decode("utf-8", "replace")
+        if size > 8192:
+            output = f"[... {size - 8192} bytes of output left out ...]\n" + output
+        log.close()
+        return Run(code, seconds, output, channel)
+
+
+def read_until_closed(fd, deadline, cap=1 << 20):
+    """Read a pipe until every writer has closed it, the deadline passes or cap bytes came."""
+    data = b""
+    while len(data) < cap:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            break
+        ready, _, _ = select.select([fd], [], [], left)
+        if not ready:
+            break
+        chunk = os.read(fd, 65536)
+        if not chunk:
+            break
+        data += chunk
+    return data
+
+
+def tail(text, lines=15):
+    return "\n".join(text.strip().splitlines()[-lines:])

@@ -1,0 +1,118 @@
+"""What a submission is: a folder or a zip (extracted safely), the folder in it of each lab, and
+the exercise files of that folder (the .cpp files of the released skeleton); anything else is
+ignored and noted. Also the submissions of a class (grade-all)."""
+import os
+import pathlib
+import re
+import stat
+import zipfile
+
+from .errors import GradeError
+
+SOURCE_SUFFIXES = (".cpp",)  # a lab folder's exercise files; headers are the framework's
+MAX_FILE_BYTES = 1 << 20
+
+
+def unpack(submission, base, notes):
+    """The folder to read a submission from: itself, or its zip extracted under base."""
+    submission = pathlib.Path(submission)
+    if submission.is_dir():
+        return submission
+    if zipfile.is_zipfile(submission):
+        root = base / "unpacked"
+        root.mkdir()
+        safe_extract(submission, root, notes)
+        return root
+    raise GradeError(f"{submission}: neither a folder nor a zip file")
+
+
+def safe_extract(archive, into, notes):
+    """Extract the regular files of a zip that stay inside `into`; skip and note the others."""
+    try:
+        zf = zipfile.ZipFile(archive)
+    except (zipfile.BadZipFile, OSError) as error:
+        raise GradeError(f"{archive}: not a readable zip file ({error})") from None
+    total = 0
+    with zf:
+        for info in zf.infolist()[:5000]:
+            name = info.filename
+            kind = (info.external_attr >> 16) & 0o170000
+            parts = pathlib.PurePosixPath(name.replace("\\", "/")).parts
+            if name.startswith(("/", "\\")) or re.match(r"^[A-Za-z]:", name) or ".." in parts:
+                notes.append(f"skipped zip entry '{name}': its path leads outside the submission")
+                continue
+            if kind == stat.S_IFLNK:
+                notes.append(f"skipped zip entry '{name}': symbolic links are not accepted")
+                continue
+            if info.is_dir() or not parts:
+                continue
+            if info.file_size > MAX_FILE_BYTES or total + info.file_size > 50 * MAX_FILE_BYTES:
+                notes.append(f"skipped zip entry '{name}': too large ({info.file_size} bytes)")
+                continue
+            target = into.joinpath(*parts)
+            target.parent.mkdir(parents=True, exist_ok=True)
+            with zf.open(info) as source:
+                data = source.read(MAX_FILE_BYTES + 1)
+            total += len(data)
+            target.write_bytes(data[:MAX_FILE_BYTES])
+
+
+def find_lab_folder(root, lab):
+    """The submission's folder for a lab: a folder named like the lab (01_rope), the shallowest,
+    else the submission's top folder when it holds files of the lab's skeleton."""
+    best = None
+    for dirpath, dirnames, _ in os.walk(root):
+        depth = len(pathlib.Path(dirpath).relative_to(root).parts)
+        dirnames[:] = [d for d in dirnames if not d.startswith((".", "__MACOSX")) and depth < 5]
+        if lab.dir in dirnames:
+            candidate = pathlib.Path(dirpath) / lab.dir
+            if best is None or len(candidate.parts) < len(best.parts):
+                best = candidate
+    if best is not None:
+        return best
+    skeleton_names = {p.name for p in lab.skeleton.iterdir() if p.suffix in (".cpp",)}
+    if any((root / n).is_file() for n in skeleton_names):
+        return root
+    return None
+
+
+def collect_sources(folder, notes, label, skeleton):
+    """The submitted exercise files of a lab folder (the .cpp files of the released skeleton
+    folder); any other file that differs from the release is noted and ignored."""
+    exercise_files = {p.name for p in skeleton.iterdir() if p.suffix in SOURCE_SUFFIXES}
+    files, ignored = {}, []
+    for path in sorted(folder.iterdir()):
+        if path.name not in exercise_files:
+            released = skeleton / path.name
+            if path.is_file() and not path.is_symlink() and not (
+                    released.is_file() and released.read_bytes() == path.read_bytes()):
+                ignored.append(path.name)
+            continue
+        if path.is_symlink():
+            notes.append(f"{label}/{path.name}: a symbolic link, ignored (submit the file itself)")
+            continue
+        if not path.is_file():
+            continue
+        if path.stat().st_size > MAX_FILE_BYTES:
+            notes.append(f"{label}/{path.name}: larger than {MAX_FILE_BYTES} bytes, ignored")
+            continue
+        files[path.name] = path.read_bytes()
+    if ignored:
+        notes.append(f"{label}: not graded (only the exercise files are compiled, against the framework's "
+                     f"headers and given code): {', '.join(ignored)}")
+    return files
+
+
+def submissions_in(folder):
+    folder = pathlib.Path(folder)
+    if not folder.is_dir():
+        raise GradeError(f"{folder}: not a folder of submissions")
+    entries = [p for p in sorted(folder.iterdir()) if not p.name.startswith(".")
+               and (p.is_dir() or (p.is_file() and p.suffix == ".zip"))]
+    if not entries:
+        raise GradeError(f"{folder}: holds no submission folders or .zip files")
+    names = [p.stem if p.is_file() else p.name for p in entries]
+    duplicate = sorted({n for n in names if names.count(n) > 1})
+    if duplicate:
+        raise GradeError(f"{folder}: two submissions for {', '.join(duplicate)} (a folder and a zip?)")
+    return list(zip(names, entries))
