@@ -29,6 +29,12 @@ INSTRUCTOR_ONLY = [
     "tests/grading", "tests/grading/*",    # the grader's own tests (sabotage, release, ...)
     "tools/submission.py", "tools/release.py", "tools/autograder.py", "tools/new_exercise.py",
     "tools/make_skeleton.py",
+    # The grader's instructor side: building, cheat checks, submissions, the bundle. A student's
+    # `check` needs only the manifest, sandbox, test runner, results and reports modules.
+    "tools/springlab_grader/build_cache.py", "tools/springlab_grader/integrity.py",
+    "tools/springlab_grader/lab_grader.py", "tools/springlab_grader/submission.py",
+    "tools/springlab_grader/gradescope.py", "tools/springlab_grader/labs.py",
+    "tools/springlab_grader/errors.py",
     "handouts/authoring.md",
     ".ci", ".ci/*",
     "labs", "labs/*",                  # written afresh from solutions/ instead, so a file
