@@ -102,7 +102,9 @@ TEST(NetPanel, StiffnessSliderRetunesOnlyItsKindOfSpring) {
   EXPECT_EQ(structural.get(), 123.0) << "the slider reads back what it wrote";
   std::vector<double> shearAfter;
   for (const Spring& s : sim.springs) {
-    if (s.kind == SpringKind::Structural) EXPECT_EQ(s.springConstant, 123.0) << "every structural spring takes the new k";
+    if (s.kind == SpringKind::Structural) {
+      EXPECT_EQ(s.springConstant, 123.0) << "every structural spring takes the new k";
+    }
     if (s.kind == SpringKind::Shear) shearAfter.push_back(s.springConstant);
   }
   EXPECT_EQ(shearAfter, shearBefore) << "shear springs keep their k";
