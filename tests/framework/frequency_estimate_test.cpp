@@ -43,7 +43,8 @@ TEST(FrequencyEstimate, FindsTheHighestOfIndependentOscillators) {
 TEST(FrequencyEstimate, LeavesPinnedMassesOut) {
   MixedOscillators sim({1.0, 0.5, 2.0, 1.0}, {4.0, 50.0, 8.0, 9.0});
   sim.togglePinned(1);
-  EXPECT_NEAR(lanczosEstimate(sim, sim.state).maxAngularFrequency, 3.0, 1e-5) << "with the stiffest mass pinned, w_max = sqrt(9/1)";
+  EXPECT_NEAR(lanczosEstimate(sim, sim.state).maxAngularFrequency, 3.0, 1e-5)
+      << "with the stiffest mass pinned, w_max = sqrt(9/1)";
 }
 
 TEST(FrequencyEstimate, DoesNotCountItsForceEvaluations) {

@@ -154,7 +154,7 @@ TEST(ModelEdit, StiffeningThroughEditModelIsNotABlowUp) {
   const double dt = 0.001;  // w dt = 0.1: stable at either stiffness
   AnchoredOscillators direct(1, 1.0, 1.0);
   direct.stiffness = 1.0e4;
-  EXPECT_THROW(direct.operate(dt), BlowUp) << "without the edit call the check should take the new energy for a blow-up";
+  EXPECT_THROW(direct.operate(dt), BlowUp) << "without editModel the check takes the new energy for a blow-up";
 
   AnchoredOscillators edited(1, 1.0, 1.0);
   edited.editModel([&](Simulation&) { edited.stiffness = 1.0e4; });

@@ -96,7 +96,9 @@ void SoftBody::afterStep(double dt) {
   // One more step of pumping. Dragged obstacles move to where the user holds them, at the
   // velocity that takes (the contacts of the next step see it); the others stand still.
   ++pumpSteps_;
-  for (size_t k = 0; k < p_.obstacles.size(); ++k) drags_[k].finishStep(p_.obstacles[k].center, p_.obstacles[k].velocity, dt);
+  for (size_t k = 0; k < p_.obstacles.size(); ++k) {
+    drags_[k].finishStep(p_.obstacles[k].center, p_.obstacles[k].velocity, dt);
+  }
 
   // Projection: push each mass out of every obstacle and fix its velocity (exercise 3.8).
   if (p_.contactMethod != ContactMethod::Projection) return;
