@@ -34,15 +34,15 @@ net::NetParameters cloth(int r, int material) {
   if (material == 0) {
     p.massModel = net::MassModel::Constant;
     p.particleMass = 1.0;
-    p.springs[kStructural] = {true, 75.0, 0.25};
-    p.springs[kShear] = {true, 22.0, 0.25};
-    p.springs[kBend] = {true, 8.0, 0.25};
+    p.springs[SpringKind::Structural] = {true, 75.0, 0.25};
+    p.springs[SpringKind::Shear] = {true, 22.0, 0.25};
+    p.springs[SpringKind::Bend] = {true, 8.0, 0.25};
   } else {
     p.massModel = net::MassModel::Density;
     p.arealDensity = 0.2;
-    p.springs[kStructural] = {true, 400.0, 0.3};
-    p.springs[kShear] = {true, 150.0, 0.3};
-    p.springs[kBend] = {true, 15.0, 0.05};
+    p.springs[SpringKind::Structural] = {true, 400.0, 0.3};
+    p.springs[SpringKind::Shear] = {true, 150.0, 0.3};
+    p.springs[SpringKind::Bend] = {true, 15.0, 0.05};
   }
   p.pins = {net::Pin::Corner00, net::Pin::Corner10};
   p.gravitation = Vec3(0.0, -9.81, 0.0);

@@ -9,7 +9,7 @@
 
 namespace springlab {
 
-double springMaxAngularFrequency(const Simulation& sim) {
+double springGershgorinBound(const Simulation& sim) {
   // Row sums of M^-1 K for the springs (Gershgorin): each spring adds k to both ends' rows
   // twice (diagonal and off-diagonal), so a free mass with springs k_j has |row| = 2 sum k_j.
   std::vector<double> rowSum(sim.masses.size(), 0.0);
@@ -81,8 +81,8 @@ void BlowUpCheck::check(Simulation& sim, double dt) const {
   // Name the likely cause: dt against the integrator's stability limit, with w_max from the
   // linearised scene at its initial state (Lanczos); Gershgorin's bound when that finds nothing.
   const Integrator& integrator = sim.integrator();
-  double wMax = estimateMaxAngularFrequency(sim, sim.initialState()).maxAngularFrequency;
-  if (!(wMax > 0.0) || !std::isfinite(wMax)) wMax = sim.maxAngularFrequency();
+  double wMax = lanczosEstimate(sim, sim.initialState()).maxAngularFrequency;
+  if (!(wMax > 0.0) || !std::isfinite(wMax)) wMax = sim.angularFrequencyBound();
   const double safeDt = predictedStableDt(integrator, wMax);
   std::ostringstream msg;
   msg << "simulation blew up at t = " << sim.state.time << " s (step " << sim.stats.steps << "): " << why

@@ -26,7 +26,7 @@ double lengthScale(const Simulation& sim) {
 
 }  // namespace
 
-FrequencyEstimate estimateMaxAngularFrequency(Simulation& sim, const State& at, int maxIterations) {
+FrequencyEstimate lanczosEstimate(Simulation& sim, const State& at, int maxIterations) {
   FrequencyEstimate result;
   const Stats savedStats = sim.stats;
   const std::vector<Vec3> savedForce = sim.force;
@@ -104,10 +104,6 @@ FrequencyEstimate estimateMaxAngularFrequency(Simulation& sim, const State& at, 
   sim.force = savedForce;
   result.maxAngularFrequency = std::sqrt(std::max(largest, 0.0));
   return result;
-}
-
-double estimatedMaxAngularFrequency(Simulation& sim) {
-  return estimateMaxAngularFrequency(sim, sim.state).maxAngularFrequency;
 }
 
 }  // namespace springlab

@@ -62,7 +62,6 @@ RopeSimulation::RopeSimulation(int dim, const RopeParameters& p)
       springFrictionConstant(p.springFrictionConstant),
       airFrictionConstant(p.airFrictionConstant),
       ground(p.ground),
-      gravityY_(p.gravitation.y()),
       initialConnectionPos_(p.ropeConnectionPos),
       initialConnectionVel_(p.ropeConnectionVel) {
   gravitation = p.gravitation;
@@ -75,31 +74,33 @@ void RopeSimulation::setControlVelocity(const Vec3& velocity) {
   if (dimension == 2) ropeConnectionVel.z() = 0.0;
 }
 
-std::vector<Parameter> RopeSimulation::parameters() {
+std::vector<Parameter> RopeSimulation::declareParameters() {
+  // The spring constants go to every spring: all springs of the rope share the rope's.
   return {
-      {"spring constant", "N/m", &springConstant, 1.0, 1.0e6, true},
-      {"spring friction", "N s/m", &springFrictionConstant, 0.0, 10.0, false},
-      {"air friction", "N s/m", &airFrictionConstant, 0.0, 1.0, false},
-      {"gravity y", "m/s^2", &gravityY_, -30.0, 30.0, false},
-      {"ground height", "m", &ground.height, -10.0, 10.0, false},
-      {"ground repulsion", "N/m", &ground.repulsion, 0.0, 1.0e4, true},
-      {"ground friction", "N s/m", &ground.friction, 0.0, 10.0, false},
-      {"ground absorption", "N s/m", &ground.absorption, 0.0, 10.0, false},
+      Parameter{"spring constant", "N/m", [this] { return springConstant; },
+                [this](double v) {
+                  springConstant = v;
+                  for (Spring& s : springs) s.springConstant = v;
+                },
+                1.0, 1.0e6, true},
+      Parameter{"spring friction", "N s/m", [this] { return springFrictionConstant; },
+                [this](double v) {
+                  springFrictionConstant = v;
+                  for (Spring& s : springs) s.frictionConstant = v;
+                },
+                0.0, 10.0, false},
+      Parameter::field("air friction", "N s/m", airFrictionConstant, 0.0, 1.0, false),
+      Parameter::field("gravity y", "m/s^2", gravitation.y(), -30.0, 30.0, false),
+      Parameter::field("ground height", "m", ground.height, -10.0, 10.0, false),
+      Parameter::field("ground repulsion", "N/m", ground.repulsion, 0.0, 1.0e4, true),
+      Parameter::field("ground friction", "N s/m", ground.friction, 0.0, 10.0, false),
+      Parameter::field("ground absorption", "N s/m", ground.absorption, 0.0, 10.0, false),
   };
 }
 
-void RopeSimulation::parametersChanged() {
-  // Every spring of the rope shares the rope's constants.
-  for (Spring& s : springs) {
-    s.springConstant = springConstant;
-    s.frictionConstant = springFrictionConstant;
-  }
-  gravitation.y() = gravityY_;
-}
-
-double RopeSimulation::maxAngularFrequency() const {
+double RopeSimulation::angularFrequencyBound() const {
   // The ground adds a spring of stiffness `repulsion` to any mass below it.
-  const double w = springMaxAngularFrequency(*this);
+  const double w = springGershgorinBound(*this);
   double minMass = INFINITY;
   for (const Mass& m : masses) minMass = std::min(minMass, m.m);
   if (masses.empty()) return w;

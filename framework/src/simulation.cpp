@@ -111,7 +111,7 @@ Vec3 Simulation::momentum() const {
   return p;
 }
 
-double Simulation::maxAngularFrequency() const { return springMaxAngularFrequency(*this); }
+double Simulation::angularFrequencyBound() const { return springGershgorinBound(*this); }
 
 Bounds Simulation::reach() const {
   Bounds b;
@@ -135,12 +135,33 @@ void Simulation::release() {
   blowUpCheck_.admitUserEnergy(*this);
 }
 
-void Simulation::togglePinned(int index) {
-  if (index < 0 || index >= numOfMasses()) throw std::out_of_range("Simulation::togglePinned: no such mass");
-  masses[index].pinned = !masses[index].pinned;
-  state.vel[index].setZero();
+void Simulation::editModel(const std::function<void(Simulation&)>& edit) {
+  edit(*this);
+  if (state.pos.size() != masses.size() || state.vel.size() != masses.size()) {
+    throw std::logic_error("Simulation::editModel: the edit changed the number of masses but not the state");
+  }
+  // The integrator's history (Verlet's previous positions) belongs to the old model, and
+  // the edited model may hold more energy than the old one: neither is a blow-up.
   integrator_->reset();
   blowUpCheck_.admitUserEnergy(*this);
+}
+
+void Simulation::togglePinned(int index) {
+  if (index < 0 || index >= numOfMasses()) throw std::out_of_range("Simulation::togglePinned: no such mass");
+  editModel([index](Simulation& sim) {
+    sim.masses[index].pinned = !sim.masses[index].pinned;
+    sim.state.vel[index].setZero();
+  });
+}
+
+std::vector<Parameter> Simulation::parameters() {
+  // The lab's setters only assign; each runs here as a model edit.
+  std::vector<Parameter> declared = declareParameters();
+  for (Parameter& p : declared) {
+    if (!p.set) continue;
+    p.set = [this, assign = std::move(p.set)](double value) { editModel([&](Simulation&) { assign(value); }); };
+  }
+  return declared;
 }
 
 }  // namespace springlab

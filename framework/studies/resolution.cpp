@@ -68,11 +68,11 @@ ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& s
   // Each resolution keeps the scene's w_max dt (its author's safety margin), rounded down to
   // divide the sample interval.
   const double interval = o.duration / o.samples;
-  const double w0 = sceneMaxAngularFrequency(registry, scene);
+  const double w0 = sceneLanczosEstimate(registry, scene);
   std::vector<RunSpec> specs;
   for (int r : values) {
     SceneDocument doc = registry.atResolution(scene, r);
-    const double w = sceneMaxAngularFrequency(registry, doc);
+    const double w = sceneLanczosEstimate(registry, doc);
     const double dt = sceneDt(scene) * (w > w0 && w > 0.0 ? w0 / w : 1.0);
     const long per = stepsPerSample(interval, dt);
     RunSpec spec{doc, study.integrator, interval / static_cast<double>(per), per, o.samples};
@@ -144,7 +144,7 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
   //    halving below the finest rung (2^levels below RK4's limit: far more accurate than
   //    any rung it judges).
   const double interval = o.duration / o.samples;
-  const double w = sceneMaxAngularFrequency(registry, model);
+  const double w = sceneLanczosEstimate(registry, model);
   const double top = w > 0.0 ? 2.83 / w : interval;
   int first = 0;
   while (interval / std::ldexp(1.0, first) > top * (1.0 + 1e-9)) ++first;

@@ -11,9 +11,12 @@ namespace springlab::studies {
 
 namespace {
 
+// Every spring's k times factor: a model edit, before the run starts.
 void scaleSprings(Simulation& sim, double factor) {
   if (factor == 1.0) return;
-  for (Spring& s : sim.springs) s.springConstant *= factor;
+  sim.editModel([factor](Simulation& model) {
+    for (Spring& s : model.springs) s.springConstant *= factor;
+  });
 }
 
 void sample(const Simulation& sim, bool keepPositions, RunResult& out) {
@@ -106,10 +109,10 @@ std::vector<double> observableSeries(const RunResult& run, const std::string& na
   return series;
 }
 
-double sceneMaxAngularFrequency(const Registry& registry, const SceneDocument& scene, double stiffnessScale) {
+double sceneLanczosEstimate(const Registry& registry, const SceneDocument& scene, double stiffnessScale) {
   LoadedScene loaded = registry.loadScene(scene);
   scaleSprings(*loaded.sim, stiffnessScale);
-  return estimateMaxAngularFrequency(*loaded.sim, loaded.sim->state).maxAngularFrequency;
+  return lanczosEstimate(*loaded.sim, loaded.sim->state).maxAngularFrequency;
 }
 
 double stabilityConstant(const Registry& registry, const std::string& integrator) {

@@ -79,9 +79,9 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
   study.scene = scene.file;
   {
     LoadedScene loaded = registry.loadScene(scene);
-    study.gershgorinBound = loaded.sim->maxAngularFrequency();
+    study.gershgorinBound = loaded.sim->angularFrequencyBound();
   }
-  study.maxAngularFrequency = sceneMaxAngularFrequency(registry, scene);
+  study.maxAngularFrequency = sceneLanczosEstimate(registry, scene);
   study.duration = o.duration > 0.0 ? o.duration : defaultStabilityDuration(study.maxAngularFrequency);
   const std::vector<std::string> names = studyIntegrators(registry, scene, o.integrators);
 
@@ -127,8 +127,8 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
   }
 
   // The predicted boundary: w_max at each stiffness.
-  for (double s : map.scales) map.maxAngularFrequency.push_back(sceneMaxAngularFrequency(registry, scene, s));
-  const double w1 = sceneMaxAngularFrequency(registry, scene, 1.0);
+  for (double s : map.scales) map.maxAngularFrequency.push_back(sceneLanczosEstimate(registry, scene, s));
+  const double w1 = sceneLanczosEstimate(registry, scene, 1.0);
   map.duration = o.duration > 0.0 ? o.duration : defaultStabilityDuration(w1);
   const double centre = (map.stabilityConstant > 0.0 ? map.stabilityConstant : 2.0) / std::max(w1, 1e-12);
 

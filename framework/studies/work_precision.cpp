@@ -18,7 +18,7 @@ WorkPrecision workPrecision(const Registry& registry, const SceneDocument& scene
   // The dt ladder: the sample interval over powers of two, starting at about twice the
   // largest stable dt of any method (RK4's 2.83 / w_max) unless given.
   const double interval = o.duration / o.samples;
-  study.maxAngularFrequency = sceneMaxAngularFrequency(registry, scene);
+  study.maxAngularFrequency = sceneLanczosEstimate(registry, scene);
   const double largest = o.largestDt > 0.0 ? o.largestDt
                          : study.maxAngularFrequency > 0.0 ? 2.0 * 2.83 / study.maxAngularFrequency
                                                             : interval;

@@ -35,6 +35,14 @@ struct SpringKindParameters {
   double damping = 0.0;    // kd, N s/m, along the spring
 };
 
+// The settings of each kind of net spring, indexed by SpringKind (Structural, Shear, Bend;
+// a net has no Extra springs) or by position 0, 1, 2.
+struct SpringKindTable : std::array<SpringKindParameters, 3> {
+  using std::array<SpringKindParameters, 3>::operator[];
+  SpringKindParameters& operator[](SpringKind kind) { return at(static_cast<std::size_t>(kind)); }
+  const SpringKindParameters& operator[](SpringKind kind) const { return at(static_cast<std::size_t>(kind)); }
+};
+
 // Masses pinned by the scene: a corner or a whole edge of the grid. u runs along the
 // width (column i), v along the height (row j); 0 is the start of an axis, 1 its end.
 enum class Pin { Corner00, Corner10, Corner01, Corner11, EdgeU0, EdgeU1, EdgeV0, EdgeV1 };
@@ -70,7 +78,7 @@ struct NetParameters {
   MassModel massModel = MassModel::Density;
   double particleMass = 1.0;      // kg per mass (Constant)
   double arealDensity = 1.0;      // kg/m^2 (Density)
-  std::array<SpringKindParameters, 3> springs{};  // indexed by SpringKind: structural, shear, bend
+  SpringKindTable springs{};      // indexed by SpringKind: structural, shear, bend
   std::vector<Pin> pins;
   Vec3 gravitation = Vec3(0.0, -9.81, 0.0);  // m/s^2
   double airFriction = 0.0;       // 1/s: F = -c m v on each mass

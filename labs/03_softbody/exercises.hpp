@@ -35,14 +35,14 @@ void addSpringForces(const std::vector<Vec3>& pos, const std::vector<Vec3>& vel,
 
 // ---- Exercise 3.2: springs from the mesh ------------------------------------------------
 // One spring along every edge of the surface, at rest at the mesh's shape: each edge once
-// although two triangles share it (in 2D: one per segment). Kind kStructural.
+// although two triangles share it (in 2D: one per segment). Kind SpringKind::Structural.
 std::vector<Spring> edgeSprings(const SurfaceMesh& mesh, double springConstant, double frictionConstant);
 // Extra springs across the body: each vertex to the vertex farthest from it, each pair
-// once. Kind kExtra.
+// once. Kind SpringKind::Extra.
 std::vector<Spring> oppositeSprings(const SurfaceMesh& mesh, double springConstant, double frictionConstant);
 // Extra springs of the second ring: across every edge, between the two corners opposite it
 // (3D: the third corners of the two triangles that share the edge; 2D: every vertex and the
-// vertex two segments further along the loop). Each pair once. Kind kBend.
+// vertex two segments further along the loop). Each pair once. Kind SpringKind::Bend.
 std::vector<Spring> secondRingSprings(const SurfaceMesh& mesh, double springConstant, double frictionConstant);
 
 // ---- Exercise 3.3: the enclosed volume ---------------------------------------------------

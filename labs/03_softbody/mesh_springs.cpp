@@ -10,7 +10,7 @@ namespace springlab::softbody {
 namespace {
 
 // A spring between a and b at rest at their distance in the mesh.
-[[maybe_unused]] Spring restingSpring(const SurfaceMesh& mesh, int a, int b, double k, double kd, int kind) {
+[[maybe_unused]] Spring restingSpring(const SurfaceMesh& mesh, int a, int b, double k, double kd, SpringKind kind) {
   return Spring{a, b, k, (mesh.vertices[a] - mesh.vertices[b]).norm(), kd, kind};
 }
 

@@ -42,7 +42,7 @@ NetLayout buildNet(const NetParameters& p) {
   }
 
   // Springs of each enabled kind, at their rest length.
-  auto connect = [&](int a, int b, int kind) {
+  auto connect = [&](int a, int b, SpringKind kind) {
     const SpringKindParameters& k = p.springs[kind];
     if (!k.enabled) return;
     const double length = (layout.pos[a] - layout.pos[b]).norm();
@@ -50,14 +50,14 @@ NetLayout buildNet(const NetParameters& p) {
   };
   for (int j = 0; j < rows; ++j) {
     for (int i = 0; i < columns; ++i) {
-      if (i + 1 < columns) connect(index(i, j), index(i + 1, j), kStructural);
-      if (j + 1 < rows) connect(index(i, j), index(i, j + 1), kStructural);
+      if (i + 1 < columns) connect(index(i, j), index(i + 1, j), SpringKind::Structural);
+      if (j + 1 < rows) connect(index(i, j), index(i, j + 1), SpringKind::Structural);
       if (i + 1 < columns && j + 1 < rows) {
-        connect(index(i, j), index(i + 1, j + 1), kShear);
-        connect(index(i + 1, j), index(i, j + 1), kShear);
+        connect(index(i, j), index(i + 1, j + 1), SpringKind::Shear);
+        connect(index(i + 1, j), index(i, j + 1), SpringKind::Shear);
       }
-      if (i + 2 < columns) connect(index(i, j), index(i + 2, j), kBend);
-      if (j + 2 < rows) connect(index(i, j), index(i, j + 2), kBend);
+      if (i + 2 < columns) connect(index(i, j), index(i + 2, j), SpringKind::Bend);
+      if (j + 2 < rows) connect(index(i, j), index(i, j + 2), SpringKind::Bend);
     }
   }
   return layout;

@@ -10,7 +10,7 @@ namespace springlab::softbody {
 namespace {
 
 // A spring between a and b at rest at their distance in the mesh.
-[[maybe_unused]] Spring restingSpring(const SurfaceMesh& mesh, int a, int b, double k, double kd, int kind) {
+[[maybe_unused]] Spring restingSpring(const SurfaceMesh& mesh, int a, int b, double k, double kd, SpringKind kind) {
   return Spring{a, b, k, (mesh.vertices[a] - mesh.vertices[b]).norm(), kd, kind};
 }
 
@@ -23,7 +23,7 @@ std::vector<Spring> edgeSprings(const SurfaceMesh& mesh, double springConstant, 
   std::set<std::pair<int, int>> seen;
   auto add = [&](int a, int b) {
     if (seen.insert(std::minmax(a, b)).second) {
-      springs.push_back(restingSpring(mesh, a, b, springConstant, frictionConstant, kStructural));
+      springs.push_back(restingSpring(mesh, a, b, springConstant, frictionConstant, SpringKind::Structural));
     }
   };
   for (const Triangle& t : mesh.triangles) {
@@ -53,7 +53,7 @@ std::vector<Spring> oppositeSprings(const SurfaceMesh& mesh, double springConsta
       }
     }
     if (far >= 0 && seen.insert(std::minmax(i, far)).second) {
-      springs.push_back(restingSpring(mesh, i, far, springConstant, frictionConstant, kExtra));
+      springs.push_back(restingSpring(mesh, i, far, springConstant, frictionConstant, SpringKind::Extra));
     }
   }
   return springs;
@@ -66,7 +66,7 @@ std::vector<Spring> secondRingSprings(const SurfaceMesh& mesh, double springCons
   std::set<std::pair<int, int>> seen;
   auto add = [&](int a, int b) {
     if (a != b && seen.insert(std::minmax(a, b)).second) {
-      springs.push_back(restingSpring(mesh, a, b, springConstant, frictionConstant, kBend));
+      springs.push_back(restingSpring(mesh, a, b, springConstant, frictionConstant, SpringKind::Bend));
     }
   };
   // 3D: the corner opposite each directed edge; the reverse edge's face holds the other one.

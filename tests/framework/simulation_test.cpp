@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include <springlab/symplectic_euler.hpp>
 
@@ -116,6 +117,72 @@ TEST(Simulation, ForceJacobianOfASceneWithoutOneNamesSceneAndIntegrator) {
     EXPECT_NE(what.find("anchored oscillators"), std::string::npos) << what;
   }
   EXPECT_TRUE(J.pairs.empty()) << "forceJacobian starts from an empty J";
+}
+
+// Symplectic Euler that counts how often its history is forgotten.
+class ResetCountingEuler final : public Integrator {
+ public:
+  explicit ResetCountingEuler(int& resets) : resets_(resets) {}
+  std::string name() const override { return "reset_counting_euler"; }
+  int order() const override { return 1; }
+  double stabilityConstant() const override { return 2.0; }
+  void reset() override { ++resets_; }
+  void step(Simulation& sim, double dt) override { euler_.step(sim, dt); }
+
+ private:
+  SymplecticEuler euler_;
+  int& resets_;
+};
+
+TEST(ModelEdit, ForgetsTheIntegratorsHistory) {
+  // History such as Verlet's previous positions belongs to the model it was made with.
+  AnchoredOscillators sim(2, 1.0, 1.0);
+  int resets = 0;
+  sim.setIntegrator(std::make_unique<ResetCountingEuler>(resets));
+  sim.operate(0.01);
+  const int before = resets;
+  sim.editModel([](Simulation& model) { model.gravitation = Vec3(0, -9.81, 0); });
+  EXPECT_EQ(resets, before + 1) << "editModel must reset the integrator";
+  EXPECT_EQ(sim.gravitation, Vec3(0, -9.81, 0)) << "editModel must apply the edit";
+  sim.togglePinned(0);
+  EXPECT_EQ(resets, before + 2) << "pinning is a model edit and must reset the integrator";
+}
+
+TEST(ModelEdit, StiffeningThroughEditModelIsNotABlowUp) {
+  // 1 kg at 1 m on a 1 N/m anchor holds 0.5 J. Made 10^4 times stiffer it holds 5000 J: far
+  // beyond the energy scale the blow-up check measured at the start, unless it is re-armed.
+  const double dt = 0.001;  // w dt = 0.1: stable at either stiffness
+  AnchoredOscillators direct(1, 1.0, 1.0);
+  direct.stiffness = 1.0e4;
+  EXPECT_THROW(direct.operate(dt), BlowUp) << "without editModel the check takes the new energy for a blow-up";
+
+  AnchoredOscillators edited(1, 1.0, 1.0);
+  edited.editModel([&](Simulation&) { edited.stiffness = 1.0e4; });
+  EXPECT_NO_THROW(for (int n = 0; n < 1000; ++n) edited.operate(dt)) << "editModel must re-arm the blow-up check";
+}
+
+TEST(ModelEdit, ParameterSetterChangesTheModelAndGetterReadsItBack) {
+  AnchoredOscillators sim(1, 1.0, 1.0);
+  int resets = 0;
+  sim.setIntegrator(std::make_unique<ResetCountingEuler>(resets));
+  const int before = resets;
+  const std::vector<Parameter> parameters = sim.parameters();
+  ASSERT_EQ(parameters.size(), 2u);
+  parameters[0].set(9.0);
+  parameters[1].set(-3.0);
+  EXPECT_EQ(sim.stiffness, 9.0) << "the stiffness slider must write the system's stiffness";
+  EXPECT_EQ(sim.gravitation.y(), -3.0) << "the gravity slider must write gravitation";
+  EXPECT_EQ(parameters[0].get(), 9.0);
+  EXPECT_EQ(parameters[1].get(), -3.0);
+  EXPECT_EQ(resets, before + 2) << "each set() must be a model edit (editModel resets the integrator)";
+  // The new stiffness acts: w = sqrt(9 / 1) = 3 rad/s, so x(t) = cos(3 t).
+  for (int n = 0; n < 1000; ++n) sim.operate(1e-4);
+  EXPECT_NEAR(sim.state.pos[0].x(), std::cos(0.3), 1e-3) << "the oscillator must swing at the edited stiffness";
+}
+
+TEST(ModelEdit, EditThatAddsMassesWithoutStateIsRefused) {
+  AnchoredOscillators sim(1, 1.0, 1.0);
+  EXPECT_THROW(sim.editModel([](Simulation& model) { model.masses.push_back(Mass{}); }), std::logic_error);
 }
 
 TEST(Simulation, RejectsDimensionOtherThan2Or3) {

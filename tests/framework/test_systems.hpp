@@ -22,10 +22,15 @@ class AnchoredOscillators final : public Simulation {
   double damping;    // N s/m
 
   std::string kind() const override { return "anchored oscillators"; }
-  double maxAngularFrequency() const override { return std::sqrt(stiffness / masses[0].m); }
+  double angularFrequencyBound() const override { return std::sqrt(stiffness / masses[0].m); }
   using Simulation::markInitialState;
 
  protected:
+  // Two sliders: the anchors' stiffness (a field of this system) and gravity's y.
+  std::vector<Parameter> declareParameters() override {
+    return {Parameter::field("stiffness", "N/m", stiffness, 0.1, 100.0, true),
+            Parameter::field("gravity y", "m/s^2", gravitation.y(), -30.0, 30.0)};
+  }
   void accumulateForces(const State& s, std::vector<Vec3>& f) override {
     for (int i = 0; i < numOfMasses(); ++i) f[i] += -stiffness * s.pos[i] - damping * s.vel[i] + masses[i].m * gravitation;
   }

@@ -30,7 +30,9 @@ State clothAfter(const std::string& integrator, int threads, int steps) {
   p.vAxis = Vec3::UnitZ();
   p.massModel = net::MassModel::Constant;
   p.particleMass = 1.0;
-  p.springs = {{{true, 75.0, 0.25}, {true, 22.0, 0.25}, {true, 8.0, 0.25}}};
+  p.springs[SpringKind::Structural] = {true, 75.0, 0.25};
+  p.springs[SpringKind::Shear] = {true, 22.0, 0.25};
+  p.springs[SpringKind::Bend] = {true, 8.0, 0.25};
   p.pins = {net::Pin::Corner00, net::Pin::Corner10};
   p.wind.model = net::WindModel::Thesis;
   p.wind.direction = Vec3(0.0, 0.0, -1.0);

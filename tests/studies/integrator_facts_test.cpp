@@ -190,7 +190,7 @@ INSTANTIATE_TEST_SUITE_P(Integrators, EnergyOver1e5Steps,
 // ---- the 80-mass rope ------------------------------------------------------------------------
 TEST(ClassicRope, SymplecticEulerCriticalDtIsWithin15PercentOf2OverWmax) {
   const SceneDocument rope = shippedScene("rope.json");
-  const double w = studies::sceneMaxAngularFrequency(allLabs(), rope);
+  const double w = studies::sceneLanczosEstimate(allLabs(), rope);
   EXPECT_NEAR(w, 2.0 * std::sqrt(10000 / 0.05), 0.02 * w) << "an 80-mass chain's w_max is close to 2 sqrt(k/m)";
   const studies::CriticalDt m =
       studies::criticalDt(allLabs(), rope, "symplectic_euler", studies::defaultStabilityDuration(w), 2.0 / w, 0.01);
@@ -213,7 +213,7 @@ SceneDocument undampedCloth(int resolution) {
 
 TEST(HangingCloth, SymplecticEulerCriticalDtIsWithin15PercentOf2OverWmax) {
   const SceneDocument cloth = undampedCloth(32);
-  const double w = studies::sceneMaxAngularFrequency(allLabs(), cloth);
+  const double w = studies::sceneLanczosEstimate(allLabs(), cloth);
   const studies::CriticalDt m =
       studies::criticalDt(allLabs(), cloth, "symplectic_euler", studies::defaultStabilityDuration(w), 2.0 / w, 0.01);
   EXPECT_NEAR(m.measured / (2.0 / w), 1.0, 0.15) << "measured " << m.measured << " s, predicted 2 / w_max = " << 2.0 / w;
@@ -221,7 +221,7 @@ TEST(HangingCloth, SymplecticEulerCriticalDtIsWithin15PercentOf2OverWmax) {
 
 TEST(HangingCloth, ImplicitEulerIsStableAt100OverWmax) {
   const SceneDocument cloth = undampedCloth(8);
-  const double w = studies::sceneMaxAngularFrequency(allLabs(), cloth);
+  const double w = studies::sceneLanczosEstimate(allLabs(), cloth);
   const studies::RunResult run = studies::runScene(allLabs(), {cloth, "implicit_euler", 100.0 / w, 20, 1});
   EXPECT_TRUE(run.stable) << "implicit Euler must be unconditionally stable; at dt = 100 / w_max: " << run.failure;
 }

@@ -83,6 +83,89 @@ studies::Advice adviseSmallRope(double tolerance) {
   return studies::advise(allLabs(), rope, o);
 }
 
+// The scene's slider labelled `label`; fails the test when there is none.
+Parameter slider(Simulation& sim, const std::string& label) {
+  for (const Parameter& p : sim.parameters()) {
+    if (p.label == label) return p;
+  }
+  ADD_FAILURE() << "the " << sim.kind() << " has no parameter \"" << label << "\"";
+  return {};
+}
+
+TEST(NetPanel, StiffnessSliderRetunesOnlyItsKindOfSpring) {
+  LoadedScene flag = allLabs().loadScene(shippedScene("net_flag.json"));
+  Simulation& sim = *flag.sim;
+  std::vector<double> shearBefore;
+  for (const Spring& s : sim.springs) {
+    if (s.kind == SpringKind::Shear) shearBefore.push_back(s.springConstant);
+  }
+  const Parameter structural = slider(sim, "structural stiffness");
+  ASSERT_TRUE(structural.set);
+  structural.set(123.0);
+  EXPECT_EQ(structural.get(), 123.0) << "the slider reads back what it wrote";
+  std::vector<double> shearAfter;
+  for (const Spring& s : sim.springs) {
+    if (s.kind == SpringKind::Structural) {
+      EXPECT_EQ(s.springConstant, 123.0) << "every structural spring takes the new k";
+    }
+    if (s.kind == SpringKind::Shear) shearAfter.push_back(s.springConstant);
+  }
+  EXPECT_EQ(shearAfter, shearBefore) << "shear springs keep their k";
+}
+
+TEST(NetPanel, WindAnglesTurnTheWindAndReadBack) {
+  LoadedScene flag = allLabs().loadScene(shippedScene("net_flag.json"));
+  Simulation& sim = *flag.sim;
+  const Parameter azimuth = slider(sim, "wind azimuth"), elevation = slider(sim, "wind elevation");
+  ASSERT_TRUE(azimuth.set && elevation.set);
+  azimuth.set(90.0);
+  elevation.set(30.0);
+  EXPECT_NEAR(azimuth.get(), 90.0, 1e-9);
+  EXPECT_NEAR(elevation.get(), 30.0, 1e-9);
+  // A wind turned to blow along +z pushes the flag further along +z than the scene's own
+  // wind (mostly along +x).
+  LoadedScene unturned = allLabs().loadScene(shippedScene("net_flag.json"));
+  for (int n = 0; n < 200; ++n) {
+    sim.operate(flag.settings.dt);
+    unturned.sim->operate(flag.settings.dt);
+  }
+  EXPECT_GT(sim.state.pos.back().z(), unturned.sim->state.pos.back().z() + 1e-3)
+      << "the turned wind must carry the free corner further along +z";
+}
+
+TEST(SoftBodyPanel, PressureSliderSetsTheGasAtRestVolume) {
+  LoadedScene ball = allLabs().loadScene(shippedScene("softbody_ball.json"));
+  const Parameter pressure = slider(*ball.sim, "pressure at rest volume");
+  ASSERT_TRUE(pressure.set);
+  const double before = pressure.get();
+  ASSERT_GT(before, 0.0);
+  pressure.set(2.0 * before);
+  EXPECT_NEAR(pressure.get(), 2.0 * before, 1e-9 * before) << "the slider reads back what it wrote";
+  const Parameter gravity = slider(*ball.sim, "gravity y");
+  gravity.set(-1.0);
+  EXPECT_EQ(ball.sim->gravitation.y(), -1.0) << "the gravity slider writes gravitation";
+}
+
+TEST(SoftBodyDrag, DraggedSphereEndsTheStepAtTheCursorAndStaysWhenLetGo) {
+  LoadedScene scene = allLabs().loadScene(shippedScene("softbody_user_sphere.json"));
+  Simulation& sim = *scene.sim;
+  int movable = -1;
+  const std::vector<Shape> shapes = sim.shapes();
+  for (int k = 0; k < static_cast<int>(shapes.size()); ++k) {
+    if (shapes[static_cast<size_t>(k)].movable) movable = k;
+  }
+  ASSERT_GE(movable, 0) << "the scene has a movable sphere";
+  const Vec3 from = shapes[static_cast<size_t>(movable)].center;
+  const double dt = scene.settings.dt;
+  sim.moveShape(movable, from + Vec3(0.01, 0, 0));
+  sim.operate(dt);
+  EXPECT_TRUE(sim.shapes()[static_cast<size_t>(movable)].center.isApprox(from + Vec3(0.01, 0, 0)))
+      << "the sphere ends the step where the user holds it";
+  sim.operate(dt);
+  EXPECT_TRUE(sim.shapes()[static_cast<size_t>(movable)].center.isApprox(from + Vec3(0.01, 0, 0)))
+      << "a sphere let go stays";
+}
+
 TEST(Advisor, GivesTheSameAnswerOnEveryRunAndACoarserOneForALooserTolerance) {
   const studies::Advice tight = adviseSmallRope(0.02);
   const studies::Advice again = adviseSmallRope(0.02);

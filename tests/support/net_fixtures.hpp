@@ -23,9 +23,9 @@ inline net::NetParameters quietNet(int resolution, double width = 1.0, double he
   p.vAxis = Vec3::UnitZ();
   p.massModel = net::MassModel::Constant;
   p.particleMass = 0.1;
-  p.springs[kStructural] = {true, 100.0, 0.1};
-  p.springs[kShear] = {true, 40.0, 0.1};
-  p.springs[kBend] = {true, 10.0, 0.05};
+  p.springs[SpringKind::Structural] = {true, 100.0, 0.1};
+  p.springs[SpringKind::Shear] = {true, 40.0, 0.1};
+  p.springs[SpringKind::Bend] = {true, 10.0, 0.05};
   p.gravitation = Vec3::Zero();
   p.airFriction = 0.0;
   p.wind = net::Wind{net::WindModel::Relative, Vec3::UnitY(), 0.0, 0.0};
@@ -44,9 +44,9 @@ inline net::NetParameters thesisCloth() {
   net::NetParameters p = quietNet(16);
   p.vAxis = -Vec3::UnitY();
   p.particleMass = 1.0;
-  p.springs[kStructural] = {true, 75.0, 0.25};
-  p.springs[kShear] = {true, 22.0, 0.25};
-  p.springs[kBend] = {true, 8.0, 0.25};
+  p.springs[SpringKind::Structural] = {true, 75.0, 0.25};
+  p.springs[SpringKind::Shear] = {true, 22.0, 0.25};
+  p.springs[SpringKind::Bend] = {true, 8.0, 0.25};
   p.pins = {net::Pin::Corner00, net::Pin::Corner10};
   p.gravitation = Vec3(0.0, -9.81, 0.0);
   return p;

@@ -29,7 +29,7 @@ inline softbody::Obstacle floorAt(double height) {
   softbody::Obstacle o;
   o.type = ShapeType::Plane;
   o.center = Vec3(0.0, height, 0.0);
-  o.axis = Vec3::UnitY();
+  o.normal = Vec3::UnitY();
   return o;
 }
 

@@ -22,7 +22,7 @@ struct Energies {
 // Upper bound on the highest angular frequency of the springs (rad/s), by Gershgorin's
 // theorem on M^-1 K: w_max^2 <= max_i 2 sum_{springs at i} k / m_i. It is exact for a
 // uniform chain, w_max = 2 sqrt(k/m), and never underestimates.
-double springMaxAngularFrequency(const Simulation& sim);
+double springGershgorinBound(const Simulation& sim);
 
 // The largest dt the integrator keeps stable for undamped springs, c / w_max (s);
 // 0 when the method has no stable dt (explicit Euler).
@@ -45,7 +45,7 @@ class BlowUpCheck {
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
   // The user put energy in (dragged, pinned): never count that as a blow-up.
   void admitUserEnergy(const Simulation& sim);
-  // Throws BlowUp. Its message predicts the safe dt from estimateMaxAngularFrequency at the
+  // Throws BlowUp. Its message predicts the safe dt from lanczosEstimate at the
   // scene's initial state (the blown-up state says nothing about the scene's stiffness).
   void check(Simulation& sim, double dt) const;
 

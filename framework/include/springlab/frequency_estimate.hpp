@@ -7,7 +7,7 @@
 // pressure, bending) without a Jacobian. Kinematic masses (pinned or grabbed) are left out:
 // they do not oscillate. A 2D scene is estimated in its plane.
 //
-// Gershgorin's bound (springMaxAngularFrequency, Simulation::maxAngularFrequency) needs no
+// Gershgorin's bound (springGershgorinBound, Simulation::angularFrequencyBound) needs no
 // force evaluation and never underestimates, but it sees only springs the lab lists and can
 // be far too high on irregular meshes; this estimate is what the stability studies and the
 // blow-up message predict with. It costs 2 force evaluations per Lanczos step (at most
@@ -22,9 +22,8 @@ struct FrequencyEstimate {
   int forceEvaluations = 0;          // evaluations spent (not counted in sim.stats)
 };
 
-FrequencyEstimate estimateMaxAngularFrequency(Simulation& sim, const State& at, int maxIterations = 60);
-
-// At the current state.
-double estimatedMaxAngularFrequency(Simulation& sim);
+// The Lanczos estimate of the highest angular frequency at state `at` (the current state:
+// lanczosEstimate(sim, sim.state)).
+FrequencyEstimate lanczosEstimate(Simulation& sim, const State& at, int maxIterations = 60);
 
 }  // namespace springlab

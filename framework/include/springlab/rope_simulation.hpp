@@ -50,16 +50,14 @@ class RopeSimulation : public Simulation {
   // The handout's members.
   Vec3 ropeConnectionPos;             // m
   Vec3 ropeConnectionVel;             // m/s, set by the user's keys
-  double springConstant;              // N/m, copied to every spring on parametersChanged()
+  double springConstant;              // N/m, every spring's k (the panel sets both)
   double springFrictionConstant;      // N s/m
   double airFrictionConstant;         // N s/m
   Ground ground;
 
   std::string kind() const override { return "rope"; }
   void setControlVelocity(const Vec3& velocity) override;
-  std::vector<Parameter> parameters() override;
-  void parametersChanged() override;
-  double maxAngularFrequency() const override;
+  double angularFrequencyBound() const override;
   std::optional<double> groundHeight() const override { return ground.height; }
   // Everywhere the rope can reach: a box of its length around the connection point, cut at
   // the ground below and a little above the connection point.
@@ -75,9 +73,9 @@ class RopeSimulation : public Simulation {
   void onReset() override;
   // Lab code calls this after filling masses, springs and state, to start the run.
   void finishBuilding();
+  std::vector<Parameter> declareParameters() override;
 
  private:
-  double gravityY_;  // m/s^2, edited in the panel, copied to gravitation
   Vec3 initialConnectionPos_;
   Vec3 initialConnectionVel_;
 };

@@ -1,8 +1,16 @@
 #pragma once
 // The base of every lab's system, after the handout's Simulation class:
 //   operate(dt) = init() (zero forces), solve() (add up forces), simulate(dt) (integrate).
-// The model (masses, springs, gravity) stays constant during a run; the data (state, force)
-// changes every step. Every lab derives from it and fills in accumulateForces().
+// It has two sides, kept apart:
+//   - physics (class Simulation): the model (masses, springs, gravity), the data (state,
+//     forces), and what integrators and diagnostics call: forces, Jacobians, energies,
+//     the after-step corrections. Every lab derives from it and fills in accumulateForces().
+//   - front end (class SceneFrontEnd): what the viewer, the `sim` command and the studies
+//     ask of a scene besides its physics: its name, shapes, parameters, observables, the
+//     region to frame. Simulation supplies "nothing to show" defaults; labs override them.
+// The model is constant between edits made through Simulation::editModel (pinning, the
+// panel's sliders, a study's scaling): the data changes every step.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,14 +43,43 @@ struct Triangle {
   int a, b, c;
 };
 
-class Simulation {
+// What the front ends (viewer, `sim`, studies) see of a scene besides its physics. Nothing
+// here is called inside a step; none of it changes the model except through
+// Simulation::editModel.
+class SceneFrontEnd {
+ public:
+  virtual ~SceneFrontEnd() = default;
+
+  // Short name of the lab's system for the HUD and error messages ("rope").
+  virtual std::string kind() const = 0;
+  // Parameters the viewer may edit, one slider each; their set() is a model edit.
+  virtual std::vector<Parameter> parameters() = 0;
+  // Named quantities of the current state (volume, pressure, sag) for the HUD and studies.
+  virtual std::vector<Observable> observables() const = 0;
+  // Colliders and markers to draw, in the scene's current state.
+  virtual std::vector<Shape> shapes() const = 0;
+  // The user drags shapes()[index] (a movable one) to `center`; called once per substep
+  // with the drag spread evenly over a frame, so the lab may derive the shape's velocity
+  // (springlab/scene_shapes.hpp: ColliderDrag).
+  virtual void moveShape(int index, const Vec3& center) = 0;
+  // Velocity of whatever the scene lets the user drive (the rope's fixed end).
+  virtual void setControlVelocity(const Vec3& velocity) = 0;
+  // Height of a horizontal ground y = h, when the scene has one (the viewer draws it there).
+  virtual std::optional<double> groundHeight() const = 0;
+  // The region the camera frames at the start.
+  virtual Bounds reach() const = 0;
+};
+
+class Simulation : public SceneFrontEnd {
  public:
   explicit Simulation(int dimension);
-  virtual ~Simulation();
+  ~Simulation() override;
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
-  // ---- model: constant during a run -------------------------------------------------
+  // ======== physics ====================================================================
+
+  // ---- model: written while a lab builds its scene, then only through editModel() ------
   int dimension;                 // 2 (planar, z = 0) or 3
   std::vector<Mass> masses;      // [n]
   std::vector<Spring> springs;   // [s] indices into masses
@@ -62,6 +99,16 @@ class Simulation {
   void solve();               // add up the forces at the current state into `force`
   void simulate(double dt);   // advance one step with the current integrator
   void operate(double dt);    // one step: the integrator calls init() and solve() itself
+
+  // ---- editing the model between steps -------------------------------------------------
+  // The one way to change the model once the scene is built (masses, springs, gravity, and
+  // a lab's own settings such as wind or gas): runs edit(*this), then forgets the
+  // integrator's history (Verlet's previous positions belong to the old model) and re-arms
+  // the blow-up check with the edited model's energy (an edit never counts as a blow-up).
+  // The state stays; the edit may change velocities (a newly pinned mass stops).
+  void editModel(const std::function<void(Simulation&)>& edit);
+  // Pin a free mass or free a pinned one (a model edit; the mass stops).
+  void togglePinned(int index);
 
   // ---- what integrators use ----------------------------------------------------------
   // Forces at an arbitrary state (not necessarily the current one); counts one evaluation.
@@ -93,49 +140,49 @@ class Simulation {
   // ---- diagnostics --------------------------------------------------------------------
   Energies energies() const;
   Vec3 momentum() const;
-  // Estimate of the highest angular frequency (rad/s); labs add their own stiffnesses.
-  virtual double maxAngularFrequency() const;
+  // Upper bound (rad/s) on the highest angular frequency the scene's integrator must
+  // resolve, without evaluating a force: by default the springs' Gershgorin bound
+  // (springGershgorinBound); labs add the stiffness of their other forces (ground, gas,
+  // contacts). lanczosEstimate (springlab/frequency_estimate.hpp) gives an estimate instead.
+  virtual double angularFrequencyBound() const;
 
-  // ---- interaction (viewer) ----------------------------------------------------------
+  // ---- the user's hand on a mass (viewer) ------------------------------------------------
   void grab(int index, const Vec3& target);  // mass follows target until release()
   void release();
   std::optional<int> grabbed() const { return grabbed_; }
-  void togglePinned(int index);
-  // Velocity of whatever the scene lets the user drive (the rope's fixed end).
-  virtual void setControlVelocity(const Vec3& velocity) { (void)velocity; }
-  // Parameters the viewer may edit; parametersChanged() is called after an edit.
-  virtual std::vector<Parameter> parameters() { return {}; }
-  virtual void parametersChanged() {}
-  // Short name of the lab's system for the HUD ("rope").
-  virtual std::string kind() const = 0;
 
-  // ---- what the viewer shows besides masses, springs and triangles -------------------
-  // Colliders and markers to draw, in the scene's current state.
-  virtual std::vector<Shape> shapes() const { return {}; }
-  // The user drags shapes()[index] (a movable one) to `center`; called once per substep
-  // with the drag spread evenly over a frame, so the lab may derive the shape's velocity.
-  virtual void moveShape(int index, const Vec3& center) { (void)index; (void)center; }
-  // Height of a horizontal ground y = h, when the scene has one (the viewer draws it there).
-  virtual std::optional<double> groundHeight() const { return std::nullopt; }
-  // The region the camera frames at the start: by default the masses' bounding box.
-  virtual Bounds reach() const;
-  // Named quantities of the current state (volume, pressure, sag) for the HUD and studies.
-  virtual std::vector<Observable> observables() const { return {}; }
+  // ======== front end: defaults for a scene with nothing to show =========================
+  // parameters() hands out declareParameters() with every set() made a model edit
+  // (editModel); the Parameters refer to this simulation and live no longer than it.
+  std::vector<Parameter> parameters() final;
+  std::vector<Observable> observables() const override { return {}; }
+  std::vector<Shape> shapes() const override { return {}; }
+  void moveShape(int index, const Vec3& center) override { (void)index; (void)center; }
+  void setControlVelocity(const Vec3& velocity) override { (void)velocity; }
+  std::optional<double> groundHeight() const override { return std::nullopt; }
+  // By default the masses' bounding box.
+  Bounds reach() const override;
 
  protected:
+  // ======== physics, for labs ============================================================
   // Add every force acting at state s into f (f arrives zeroed, size n).
   virtual void accumulateForces(const State& s, std::vector<Vec3>& f) = 0;
   // Energy of forces a lab adds beyond springs and gravity (ground repulsion, pressure).
   virtual double otherPotentialEnergy(const State& s) const { (void)s; return 0.0; }
-  // Called after each integrator step: kinematic masses, collision projection.
+  // Called after each integrator step: kinematic masses, dragged colliders, collision projection.
   virtual void afterStep(double dt) { (void)dt; }
   // Called by reset() after the initial state is back: restore the lab's own data.
   virtual void onReset() {}
   // Remember the current state as the one reset() returns to; call at the end of building.
   void markInitialState();
-  // The user put energy in through the lab's own controls (a dragged collider, a pressure
-  // slider): the blow-up check takes the new energy as part of the scene's scale.
+  // The user put energy in through the lab's own controls (a dragged collider): the
+  // blow-up check takes the new energy as part of the scene's scale.
   void admitUserEnergy() { blowUpCheck_.admitUserEnergy(*this); }
+
+  // ======== front end, for labs ==========================================================
+  // The sliders of the scene: get() reads the model, set() writes it (parameters() makes
+  // each set() a model edit, so set() itself only assigns).
+  virtual std::vector<Parameter> declareParameters() { return {}; }
 
  private:
   std::unique_ptr<Integrator> integrator_;

@@ -99,20 +99,23 @@ void drawControls(Simulation* sim, const std::vector<std::string>& integratorNam
     }
   }
 
-  // The scene's own parameters, one slider each.
+  // The scene's own parameters, one slider each: it shows get(); an edit is recorded for the
+  // loop, which writes it with set().
   if (sim) {
     const std::vector<Parameter> parameters = sim->parameters();
     if (!parameters.empty()) {
       ImGui::Separator();
       ImGui::TextDisabled("parameters");
     }
-    for (const Parameter& p : parameters) {
-      if (!p.value) continue;
+    for (std::size_t k = 0; k < parameters.size(); ++k) {
+      const Parameter& p = parameters[k];
+      if (!p.get || !p.set) continue;
       const std::string label = p.unit.empty() ? p.label : p.label + " (" + p.unit + ")";
       const bool logarithmic = p.logarithmic && p.min > 0.0;
-      if (ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, p.value, &p.min, &p.max, "%.4g",
+      double value = p.get();
+      if (ImGui::SliderScalar(label.c_str(), ImGuiDataType_Double, &value, &p.min, &p.max, "%.4g",
                               logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None)) {
-        control.parametersEdited = true;
+        control.parameterEdit = RunControl::ParameterEdit{k, value};
       }
     }
   }

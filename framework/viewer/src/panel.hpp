@@ -3,6 +3,7 @@
 // messages that stay on screen while something is wrong (a missing exercise, a blow-up).
 // They only draw and record what the user asked for; viewer.cpp applies the requests, so an
 // exception thrown by the simulation never interrupts an ImGui window half-way.
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,7 +26,13 @@ struct RunControl {
   bool resetRequested = false;
   bool screenshotRequested = false;
   std::optional<std::string> integratorRequested;
-  bool parametersEdited = false;
+  // A slider moved: the index into the scene's parameters() and the new value, which the
+  // loop writes with Parameter::set (a model edit).
+  struct ParameterEdit {
+    std::size_t index = 0;
+    double value = 0.0;
+  };
+  std::optional<ParameterEdit> parameterEdit;
 };
 
 // An exercise the student has not written yet, from NotImplemented.

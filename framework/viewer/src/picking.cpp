@@ -34,7 +34,7 @@ std::optional<int> pickShape(const std::vector<Shape>& shapes, const Ray& ray) {
     const Shape& shape = shapes[k];
     if (!shape.movable || (shape.type != ShapeType::Sphere && shape.type != ShapeType::Box)) continue;
     const float radius = shape.type == ShapeType::Sphere ? static_cast<float>(shape.radius)
-                                                         : static_cast<float>(shape.axis.norm());
+                                                         : static_cast<float>(shape.halfExtents.norm());
     // Ray against sphere: the nearest root of |o + t d - c|^2 = r^2 in front of the eye.
     const glm::vec3 oc = ray.origin - toGlm(shape.center);
     const float b = glm::dot(oc, ray.direction);

@@ -14,13 +14,14 @@ namespace springlab::viewer {
 namespace {
 
 // Structural, shear, bend and extra springs: four colours told apart at a glance.
-glm::vec3 springKindColor(int kind) {
+glm::vec3 springKindColor(SpringKind kind) {
   switch (kind) {
-    case kStructural: return {0.35f, 0.65f, 1.0f};
-    case kShear: return {0.35f, 0.9f, 0.45f};
-    case kBend: return {1.0f, 0.6f, 0.2f};
-    default: return {0.85f, 0.4f, 0.95f};
+    case SpringKind::Structural: return {0.35f, 0.65f, 1.0f};
+    case SpringKind::Shear: return {0.35f, 0.9f, 0.45f};
+    case SpringKind::Bend: return {1.0f, 0.6f, 0.2f};
+    case SpringKind::Extra: break;
   }
+  return {0.85f, 0.4f, 0.95f};
 }
 
 // The triangles of a unit UV sphere, their corners being their normals: made once.
@@ -361,7 +362,7 @@ void Renderer::drawShapes(const std::vector<Shape>& shapes, std::optional<int> h
         break;
       }
       case ShapeType::Plane: {
-        const glm::vec3 n = glm::normalize(toGlm(shape.axis));
+        const glm::vec3 n = glm::normalize(toGlm(shape.normal));
         const auto [t, b] = tangents(n);
         const float h = planeHalfSize;
         const glm::vec3 p00 = c - h * t - h * b, p10 = c + h * t - h * b, p11 = c + h * t + h * b,
@@ -370,7 +371,7 @@ void Renderer::drawShapes(const std::vector<Shape>& shapes, std::optional<int> h
         break;
       }
       case ShapeType::Box: {
-        const glm::vec3 e = toGlm(shape.axis);
+        const glm::vec3 e = toGlm(shape.halfExtents);
         // Each face: its normal and two in-plane axes, scaled by the half extents.
         for (int axis = 0; axis < 3; ++axis) {
           for (float side : {-1.0f, 1.0f}) {
@@ -387,7 +388,7 @@ void Renderer::drawShapes(const std::vector<Shape>& shapes, std::optional<int> h
         break;
       }
       case ShapeType::Arrow: {
-        const glm::vec3 a = toGlm(shape.axis);
+        const glm::vec3 a = toGlm(shape.arrow);
         const float len = glm::length(a);
         if (len <= 0.0f) break;
         const glm::vec3 tip = c + a, d = a / len;

@@ -509,9 +509,14 @@ void Viewer::interact() {
     guarded([&] { sim->setIntegrator(registry_.makeIntegrator(name)); });
     if (!scene_.missingAtLoad) missing_.reset();  // the missing piece may have been the old method
   }
-  if (control_.parametersEdited) {
-    control_.parametersEdited = false;
-    guarded([&] { sim->parametersChanged(); });
+  if (control_.parameterEdit) {
+    const RunControl::ParameterEdit edit = *control_.parameterEdit;
+    control_.parameterEdit.reset();
+    // Parameter::set is a model edit (Simulation::editModel).
+    guarded([&] {
+      const std::vector<Parameter> parameters = sim->parameters();
+      if (edit.index < parameters.size()) parameters[edit.index].set(edit.value);
+    });
     maxAngularFrequency_.reset();
     hudNumbers_.reset();
   }
@@ -643,7 +648,7 @@ void Viewer::drawGui(bool last) {
       hud.observables = hudNumbers_->observables;
       // w_max from the Lanczos estimate (a few dozen force evaluations), cached until the
       // scene's parameters change or it is reset.
-      if (!maxAngularFrequency_) maxAngularFrequency_ = estimatedMaxAngularFrequency(*sim);
+      if (!maxAngularFrequency_) maxAngularFrequency_ = lanczosEstimate(*sim, sim->state).maxAngularFrequency;
       stableDt = predictedStableDt(sim->integrator(), *maxAngularFrequency_);
     } catch (const std::exception&) {
       // A missing exercise or a broken state: the HUD leaves the numbers out.

@@ -98,7 +98,7 @@ TEST_F(MatchesReference, BuildNet) {
     // Springs and triangles as sets: their order is free.
     using Key = std::tuple<int, int, int>;
     auto springKeys = [](const auto& springs) {
-      std::vector<std::tuple<int, int, int, double, double, double>> keys;
+      std::vector<std::tuple<SpringKind, int, int, double, double, double>> keys;
       for (const auto& s : springs) {
         keys.emplace_back(s.kind, std::min(s.mass1, s.mass2), std::max(s.mass1, s.mass2), s.springConstant,
                           s.springLength, s.frictionConstant);

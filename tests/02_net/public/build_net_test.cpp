@@ -43,25 +43,25 @@ TEST_F(BuildNet, SpringsOfEachKindJoinTheRightNeighbours) {
   const NetLayout net = buildNet(p);
   const int c = p.resolution, r = gridRows(p);
   // Expected (kind, lower index, higher index) of every spring.
-  std::multiset<std::tuple<int, int, int>> want, got;
-  auto add = [&](int kind, int a, int b) { want.insert({kind, std::min(a, b), std::max(a, b)}); };
+  std::multiset<std::tuple<SpringKind, int, int>> want, got;
+  auto add = [&](SpringKind kind, int a, int b) { want.insert({kind, std::min(a, b), std::max(a, b)}); };
   for (int j = 0; j < r; ++j) {
     for (int i = 0; i < c; ++i) {
       const int k = j * c + i;
-      if (i + 1 < c) add(kStructural, k, k + 1);
-      if (j + 1 < r) add(kStructural, k, k + c);
+      if (i + 1 < c) add(SpringKind::Structural, k, k + 1);
+      if (j + 1 < r) add(SpringKind::Structural, k, k + c);
       if (i + 1 < c && j + 1 < r) {
-        add(kShear, k, k + c + 1);
-        add(kShear, k + 1, k + c);
+        add(SpringKind::Shear, k, k + c + 1);
+        add(SpringKind::Shear, k + 1, k + c);
       }
-      if (i + 2 < c) add(kBend, k, k + 2);
-      if (j + 2 < r) add(kBend, k, k + 2 * c);
+      if (i + 2 < c) add(SpringKind::Bend, k, k + 2);
+      if (j + 2 < r) add(SpringKind::Bend, k, k + 2 * c);
     }
   }
   for (const Spring& s : net.springs) {
     got.insert({s.kind, std::min(s.mass1, s.mass2), std::max(s.mass1, s.mass2)});
-    ASSERT_GE(s.kind, kStructural);
-    ASSERT_LE(s.kind, kBend) << "Spring::kind must be kStructural, kShear or kBend";
+    ASSERT_TRUE(s.kind == SpringKind::Structural || s.kind == SpringKind::Shear || s.kind == SpringKind::Bend)
+        << "Spring::kind must be SpringKind::Structural, Shear or Bend, not " << s.kind;
     EXPECT_DOUBLE_EQ(s.springConstant, p.springs[s.kind].stiffness) << "each spring takes its kind's stiffness";
     EXPECT_DOUBLE_EQ(s.frictionConstant, p.springs[s.kind].damping) << "each spring takes its kind's damping";
     EXPECT_NEAR(s.springLength, (net.pos[s.mass1] - net.pos[s.mass2]).norm(), 1e-12)
@@ -73,7 +73,7 @@ TEST_F(BuildNet, SpringsOfEachKindJoinTheRightNeighbours) {
 }
 
 TEST_F(BuildNet, DisabledKindHasNoSprings) {
-  for (int off = kStructural; off <= kBend; ++off) {
+  for (SpringKind off : {SpringKind::Structural, SpringKind::Shear, SpringKind::Bend}) {
     NetParameters p = quietNet(integer(3, 8));
     p.springs[off].enabled = false;
     const NetLayout net = buildNet(p);

@@ -72,7 +72,7 @@ class OneSpring final : public Simulation {
  public:
   OneSpring(double m, double k, double L0, double kd) : Simulation(3) {
     masses = {Mass{m, true}, Mass{m, false}};
-    springs = {Spring{1, 0, k, L0, kd, kStructural}};
+    springs = {Spring{1, 0, k, L0, kd, SpringKind::Structural}};
     state.pos = {Vec3::Zero(), Vec3(L0, 0, 0)};
     state.vel = {Vec3::Zero(), Vec3::Zero()};
     markInitialState();

@@ -55,7 +55,7 @@ TEST_F(StretchLimit, KeepsMomentumAndLeavesShortSpringsAlone) {
   const double m1 = uniform(0.1, 2), m2 = uniform(0.1, 2), L0 = uniform(0.1, 1), dt = uniform(0.001, 0.02);
   const Vec3 dir = vec3(-1, 1).normalized();
   std::vector<Vec3> pos{Vec3::Zero(), uniform(1.3, 2.0) * L0 * dir}, vel{vec3(-1, 1), vec3(-1, 1)};
-  const std::vector<Spring> springs{Spring{0, 1, 100.0, L0, 0.0, kStructural}};
+  const std::vector<Spring> springs{Spring{0, 1, 100.0, L0, 0.0, SpringKind::Structural}};
   const std::vector<double> w{1 / m1, 1 / m2};
   const Vec3 centre = (m1 * pos[0] + m2 * pos[1]) / (m1 + m2), momentum = m1 * vel[0] + m2 * vel[1];
   limitStretch(pos, vel, springs, w, 0.1, dt, 10);

@@ -57,7 +57,7 @@ double forceError(const std::vector<Vec3>& got, const std::vector<Vec3>& want) {
 }
 
 // A spring list as a sorted list of (ends, constants, kind), ends in increasing order.
-using SpringKey = std::tuple<int, int, double, double, double, int>;
+using SpringKey = std::tuple<int, int, double, double, double, SpringKind>;
 std::vector<SpringKey> keys(const std::vector<Spring>& springs) {
   std::vector<SpringKey> out;
   for (const Spring& s : springs) {
@@ -87,7 +87,7 @@ TEST_F(MatchesReference, AddSpringForces) {
     const std::vector<Vec3> pos = randomVectors(static_cast<size_t>(n), 2.0), vel = randomVectors(static_cast<size_t>(n), 3.0);
     std::vector<Spring> springs;
     for (int s = integer(1, 60); s > 0; --s) {
-      springs.push_back({integer(0, n - 1), integer(0, n - 1), uniform(1, 1e4), uniform(0, 2), uniform(0, 5), kStructural});
+      springs.push_back({integer(0, n - 1), integer(0, n - 1), uniform(1, 1e4), uniform(0, 2), uniform(0, 5), SpringKind::Structural});
     }
     std::vector<Vec3> got(static_cast<size_t>(n), Vec3::Zero()), want = got;
     addSpringForces(pos, vel, springs, got);

@@ -177,7 +177,7 @@ TEST(SoftBodyEnergy, BlowUpCheckStaysQuietWhileAStiffBallIsPumpedUp) {
   SoftBodyParameters p = pressurisedBall(2, 2000.0, 0.5, 400.0);
   p.totalMass = 0.05;
   // Pumped over 100 steps of half the stable step (the stiffness does not depend on the gas).
-  const double dt = 0.5 * 2.0 / SoftBody(3, p).maxAngularFrequency();
+  const double dt = 0.5 * 2.0 / SoftBody(3, p).angularFrequencyBound();
   p.inflationTime = 100 * dt;
   SoftBody ball(3, p);
   EXPECT_NO_THROW(for (int step = 0; step < 3000; ++step) ball.operate(dt))
@@ -193,7 +193,7 @@ TEST(BoylesLaw, PressureTimesVolumeStaysConstantInASlowSqueeze) {
   p.contact = {0.0, 0.0, 0.0, 0.0};
   p.obstacles.push_back(springlab::testing::floorAt(-0.5));
   Obstacle lid = springlab::testing::floorAt(0.5);
-  lid.axis = -Vec3::UnitY();
+  lid.normal = -Vec3::UnitY();
   p.obstacles.push_back(lid);
   SoftBody ball(3, p);
   auto pv = [&] { return ball.pressure(ball.state) * ball.volume(ball.state); };

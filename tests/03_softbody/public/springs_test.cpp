@@ -24,7 +24,7 @@ class SpringForces : public Seeded {};
 TEST_F(SpringForces, AreOppositeOnTheTwoEnds) {
   for (int t = 0; t < 100; ++t) {
     const std::vector<Vec3> pos = {vec3(-1, 1), vec3(-1, 1)}, vel = {vec3(-2, 2), vec3(-2, 2)};
-    const std::vector<Spring> springs = {{0, 1, uniform(1, 1000), uniform(0, 2), uniform(0, 5), kStructural}};
+    const std::vector<Spring> springs = {{0, 1, uniform(1, 1000), uniform(0, 2), uniform(0, 5), SpringKind::Structural}};
     std::vector<Vec3> f = zeros(2);
     addSpringForces(pos, vel, springs, f);
     ASSERT_LT((f[0] + f[1]).norm(), 1e-9 * (1.0 + f[0].norm()))
@@ -38,14 +38,14 @@ TEST_F(SpringForces, FollowHookesLawAndDampAlongTheSpring) {
   const double k = uniform(10, 1000), L0 = uniform(0.5, 1.5), l = uniform(0.2, 2.0), kd = uniform(0.1, 3);
   const std::vector<Vec3> pos = {Vec3(l, 0, 0), Vec3::Zero()};
   std::vector<Vec3> f = zeros(2);
-  addSpringForces(pos, zeros(2), {{0, 1, k, L0, 0.0, kStructural}}, f);
+  addSpringForces(pos, zeros(2), {{0, 1, k, L0, 0.0, SpringKind::Structural}}, f);
   EXPECT_NEAR(f[0].x(), -k * (l - L0), 1e-9 * k) << "Hooke's law: F1 = -k (l - L0) e " << seedText();
   EXPECT_NEAR(f[0].y(), 0.0, 1e-12) << "a spring pushes only along its own direction " << seedText();
 
   // Relative velocity (a, b, 0): only its part along the spring is damped.
   const double a = uniform(-2, 2), b = uniform(-2, 2);
   f = zeros(2);
-  addSpringForces(pos, {Vec3(a, b, 0), Vec3::Zero()}, {{0, 1, k, l, kd, kStructural}}, f);
+  addSpringForces(pos, {Vec3(a, b, 0), Vec3::Zero()}, {{0, 1, k, l, kd, SpringKind::Structural}}, f);
   EXPECT_NEAR(f[0].x(), -kd * a, 1e-9) << "damping must be -kd ((v1 - v2) . e) e " << seedText();
   EXPECT_NEAR(f[0].y(), 0.0, 1e-12) << "sideways relative motion must not be damped by the spring " << seedText();
 }
@@ -53,7 +53,7 @@ TEST_F(SpringForces, FollowHookesLawAndDampAlongTheSpring) {
 TEST_F(SpringForces, ZeroLengthSpringExertsNoForce) {
   const Vec3 x = vec3(-1, 1);
   std::vector<Vec3> f = zeros(2);
-  addSpringForces({x, x}, {vec3(-1, 1), vec3(-1, 1)}, {{0, 1, 100.0, 0.5, 1.0, kStructural}}, f);
+  addSpringForces({x, x}, {vec3(-1, 1), vec3(-1, 1)}, {{0, 1, 100.0, 0.5, 1.0, SpringKind::Structural}}, f);
   EXPECT_TRUE(f[0].allFinite() && f[1].allFinite()) << "a spring of zero length gave a NaN force";
   EXPECT_EQ(f[0].norm(), 0.0) << "a spring of zero length has no direction and must exert no force";
 }
@@ -75,7 +75,7 @@ TEST(MeshSprings, OneSpringPerEdgeOfAClosedSurface) {
         << " edges; each edge needs exactly one spring";
     EXPECT_EQ(pairsOf(springs).size(), springs.size()) << "two springs join the same pair of masses";
     for (const Spring& s : springs) {
-      EXPECT_EQ(s.kind, kStructural) << "edge springs are structural";
+      EXPECT_EQ(s.kind, SpringKind::Structural) << "edge springs are structural";
       EXPECT_EQ(s.springConstant, 100.0);
       EXPECT_EQ(s.frictionConstant, 1.0);
     }
@@ -112,7 +112,7 @@ TEST(MeshSprings, OppositeSpringsJoinAntipodesOfASphere) {
   EXPECT_EQ(springs.size(), m.vertices.size() / 2) << "each antipodal pair needs exactly one spring";
   for (const Spring& s : springs) {
     EXPECT_NEAR(s.springLength, 2.0, 1e-9) << "an opposite spring must cross the whole sphere";
-    EXPECT_EQ(s.kind, kExtra) << "opposite springs are of kind kExtra";
+    EXPECT_EQ(s.kind, SpringKind::Extra) << "opposite springs are of kind SpringKind::Extra";
   }
 }
 
@@ -125,7 +125,7 @@ TEST(MeshSprings, SecondRingCrossesEveryEdgeOnce) {
   EXPECT_EQ(pairsOf(cross).size(), cross.size()) << "two second-ring springs join the same masses";
   for (const Spring& s : cross) {
     EXPECT_FALSE(edges.count(std::minmax(s.mass1, s.mass2))) << "a second-ring spring must not lie on an edge";
-    EXPECT_EQ(s.kind, kBend) << "second-ring springs are of kind kBend";
+    EXPECT_EQ(s.kind, SpringKind::Bend) << "second-ring springs are of kind SpringKind::Bend";
   }
   // In 2D: i to i + 2 around the loop.
   const std::vector<Spring> ring = secondRingSprings(ringMesh(9, 1.0), 5.0, 0.1);

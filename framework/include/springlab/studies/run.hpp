@@ -48,7 +48,7 @@ std::vector<double> observableSeries(const RunResult& run, const std::string& na
 
 // The largest angular frequency of the scene at its initial state (Lanczos estimate),
 // with every spring's k multiplied by stiffnessScale.
-double sceneMaxAngularFrequency(const Registry& registry, const SceneDocument& scene, double stiffnessScale = 1.0);
+double sceneLanczosEstimate(const Registry& registry, const SceneDocument& scene, double stiffnessScale = 1.0);
 
 // The integrator's stability constant c (dt < c / w_max), by name.
 double stabilityConstant(const Registry& registry, const std::string& integrator);

@@ -34,7 +34,7 @@ struct Stability {
   std::string scene;
   double duration = 0.0;
   double maxAngularFrequency = 0.0;  // rad/s, Lanczos estimate
-  double gershgorinBound = 0.0;      // rad/s, Simulation::maxAngularFrequency
+  double gershgorinBound = 0.0;      // rad/s, Simulation::angularFrequencyBound
   std::vector<CriticalDt> methods;
   std::vector<std::string> skipped;
 };

@@ -30,17 +30,7 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
   columns_ = p.resolution;
   rows_ = gridRows(p);
   spheres_ = p.spheres;
-  sphereTarget_.assign(spheres_.size(), std::nullopt);
-
-  // What the panel edits.
-  gravityY_ = p.gravitation.y();
-  for (int k = 0; k < 3; ++k) {
-    stiffness_[k] = p.springs[k].stiffness;
-    damping_[k] = p.springs[k].damping;
-  }
-  const Vec3& d = p.wind.direction;
-  windAzimuth_ = std::atan2(d.z(), d.x()) / kDegrees;
-  windElevation_ = std::asin(std::clamp(d.y(), -1.0, 1.0)) / kDegrees;
+  drags_.assign(spheres_.size(), ColliderDrag{});
 
   // The plane the pinned masses start in, for the bulge.
   int pinned = 0;
@@ -138,16 +128,7 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
 
 void Net::afterStep(double dt) {
   // Dragged spheres move to where the user holds them, at the velocity that takes.
-  for (std::size_t k = 0; k < spheres_.size(); ++k) {
-    SphereCollider& sphere = spheres_[k];
-    if (sphereTarget_[k]) {
-      sphere.velocity = (*sphereTarget_[k] - sphere.center) / dt;
-      sphere.center = *sphereTarget_[k];
-      sphereTarget_[k].reset();
-    } else {
-      sphere.velocity.setZero();
-    }
-  }
+  for (std::size_t k = 0; k < spheres_.size(); ++k) drags_[k].finishStep(spheres_[k].center, spheres_[k].velocity, dt);
 
   // Stretch limiting (exercise 2.6), then self-collision (2.10): both move masses apart.
   inverseMass_.resize(masses.size());
@@ -190,14 +171,16 @@ void Net::afterStep(double dt) {
 
 void Net::onReset() {
   spheres_ = settings.spheres;
-  sphereTarget_.assign(spheres_.size(), std::nullopt);
+  drags_.assign(spheres_.size(), ColliderDrag{});
 }
 
 void Net::moveSphere(int sphere, const Vec3& center) {
   if (sphere < 0 || sphere >= static_cast<int>(spheres_.size())) return;
   Vec3 c = center;
   if (dimension == 2) c.z() = 0.0;
-  sphereTarget_[static_cast<std::size_t>(sphere)] = c;
+  drags_[static_cast<std::size_t>(sphere)].holdAt(c);
+  // The energy the sphere puts into the cloth is the user's, not a blow-up.
+  admitUserEnergy();
 }
 
 // ---- what the viewer shows ---------------------------------------------------------------
@@ -205,45 +188,38 @@ void Net::moveSphere(int sphere, const Vec3& center) {
 namespace {
 // Colliders are drawn this far (m) behind their surface, so cloth resting on them shows.
 constexpr double kDrawInset = 0.004;
-
-// The first plane facing straight up: the ground.
-const PlaneCollider* groundPlane(const std::vector<PlaneCollider>& planes) {
-  for (const PlaneCollider& plane : planes) {
-    if (plane.normal.y() > 1.0 - 1e-12) return &plane;
-  }
-  return nullptr;
-}
 }  // namespace
+
+std::optional<GroundPlane> Net::ground() const {
+  return findGroundPlane(settings.planes, [](const PlaneCollider& plane) {
+    return std::optional<PlaneGeometry>(PlaneGeometry{plane.point, plane.normal});
+  });
+}
 
 std::optional<double> Net::groundHeight() const {
   // The viewer draws the ground plane, a little below it (see kDrawInset).
-  if (const PlaneCollider* ground = groundPlane(settings.planes)) return ground->point.y() - kDrawInset;
+  if (const std::optional<GroundPlane> g = ground()) return g->height - kDrawInset;
   return std::nullopt;
 }
 
 std::vector<Shape> Net::shapes() const {
   // Spheres first (their indices are the ones moveShape receives), then the slopes, then the wind.
   std::vector<Shape> out;
-  for (const SphereCollider& s : spheres_) {
-    out.push_back(Shape{ShapeType::Sphere, s.center, Vec3::UnitY(), s.radius, s.movable});
+  for (const SphereCollider& s : spheres_) out.push_back(Shape::sphere(s.center, s.radius, s.movable));
+  const std::optional<GroundPlane> g = ground();
+  for (int k = 0; k < static_cast<int>(settings.planes.size()); ++k) {
+    if (g && g->index == k) continue;  // drawn by the viewer as the ground
+    const PlaneCollider& plane = settings.planes[static_cast<std::size_t>(k)];
+    out.push_back(Shape::plane(plane.point - kDrawInset * plane.normal, plane.normal));
   }
-  const PlaneCollider* ground = groundPlane(settings.planes);
-  for (const PlaneCollider& plane : settings.planes) {
-    if (&plane == ground) continue;  // drawn by the viewer as the ground
-    out.push_back(Shape{ShapeType::Plane, plane.point - kDrawInset * plane.normal, plane.normal, 0.0, false});
-  }
-  if (const std::optional<Shape> arrow = windArrow(Simulation::reach())) out.push_back(*arrow);
+  if (const std::optional<Shape> arrow = windArrow()) out.push_back(*arrow);
   return out;
 }
 
-std::optional<Shape> Net::windArrow(const Bounds& b) const {
-  // Above the cloth's box, centred, as long as the wind is strong (up to 60 % of the box).
-  if (settings.wind.strength <= 0.0) return std::nullopt;
-  const double size = std::max((b.hi - b.lo).norm(), 0.5);
+std::optional<Shape> Net::windArrow() const {
+  // Over the cloth, as long as the wind is strong (up to 60 % of the cloth's size).
   const double scale = settings.wind.model == WindModel::Relative ? 0.05 : 0.03;  // per m/s, per N/m^2
-  const Vec3 length = std::min(scale * settings.wind.strength, 0.6) * size * settings.wind.direction;
-  const Vec3 middle = 0.5 * (b.lo + b.hi) + Vec3(0.0, 0.5 * (b.hi.y() - b.lo.y()) + 0.2 * size, 0.0);
-  return Shape{ShapeType::Arrow, middle - 0.5 * length, length, 0.0, false};
+  return springlab::windArrow(Simulation::reach(), settings.wind.direction, scale * settings.wind.strength);
 }
 
 void Net::moveShape(int index, const Vec3& center) {
@@ -265,11 +241,9 @@ Bounds Net::reach() const {
     b.hi = b.hi.cwiseMax(plane.point);
   }
   // And the wind's arrow, so the camera shows it.
-  if (const std::optional<Shape> arrow = windArrow(Simulation::reach())) {
-    for (const Vec3& end : {arrow->center, Vec3(arrow->center + arrow->axis)}) {
-      b.lo = b.lo.cwiseMin(end);
-      b.hi = b.hi.cwiseMax(end);
-    }
+  if (const std::optional<Shape> arrow = windArrow()) {
+    b.include(arrow->center);
+    b.include(arrow->center + arrow->arrow);
   }
   return b;
 }
@@ -298,50 +272,61 @@ std::vector<Observable> Net::observables() const {
 
 // ---- the panel ------------------------------------------------------------------------------
 
-std::vector<Parameter> Net::parameters() {
-  return {
-      {"wind strength", settings.wind.model == WindModel::Relative ? "m/s" : "N/m^2", &settings.wind.strength, 0.0, 40.0,
-       false},
-      {"wind azimuth", "deg", &windAzimuth_, -180.0, 180.0, false},
-      {"wind elevation", "deg", &windElevation_, -90.0, 90.0, false},
-      {"structural stiffness", "N/m", &stiffness_[kStructural], 0.1, 1.0e5, true},
-      {"shear stiffness", "N/m", &stiffness_[kShear], 0.1, 1.0e5, true},
-      {"bend stiffness", "N/m", &stiffness_[kBend], 0.1, 1.0e5, true},
-      {"structural damping", "N s/m", &damping_[kStructural], 0.0, 10.0, false},
-      {"shear damping", "N s/m", &damping_[kShear], 0.0, 10.0, false},
-      {"bend damping", "N s/m", &damping_[kBend], 0.0, 10.0, false},
-      {"gravity y", "m/s^2", &gravityY_, -30.0, 30.0, false},
-      {"air friction", "1/s", &settings.airFriction, 0.0, 5.0, false},
-      {"contact absorption", "", &settings.absorption, 0.0, 2.0, false},
-      {"contact friction", "", &settings.friction, 0.0, 2.0, false},
-      {"max stretch", "", &settings.maxStretch, 0.01, 1.0, false},
+std::vector<Parameter> Net::declareParameters() {
+  // The wind's direction as two angles, read from and written to settings.wind.direction.
+  const auto azimuth = [this] {
+    const Vec3& d = settings.wind.direction;
+    return std::atan2(d.z(), d.x()) / kDegrees;
   };
-}
-
-void Net::parametersChanged() {
-  // Each spring takes its kind's constants; the wind its direction from the two angles.
-  for (Spring& s : springs) {
-    if (s.kind >= kStructural && s.kind <= kBend) {
-      s.springConstant = stiffness_[static_cast<std::size_t>(s.kind)];
-      s.frictionConstant = damping_[static_cast<std::size_t>(s.kind)];
+  const auto elevation = [this] { return std::asin(std::clamp(settings.wind.direction.y(), -1.0, 1.0)) / kDegrees; };
+  const auto setWind = [this](double azimuthDegrees, double elevationDegrees) {
+    const double a = azimuthDegrees * kDegrees, e = elevationDegrees * kDegrees;
+    Vec3 d(std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a));
+    if (dimension == 2) {
+      d.z() = 0.0;
+      if (d.norm() < 1e-9) d = Vec3::UnitX();
+      d.normalize();
     }
-  }
-  for (int k = 0; k < 3; ++k) {
-    settings.springs[static_cast<std::size_t>(k)].stiffness = stiffness_[static_cast<std::size_t>(k)];
-    settings.springs[static_cast<std::size_t>(k)].damping = damping_[static_cast<std::size_t>(k)];
-  }
-  gravitation.y() = gravityY_;
-  applyWindPanel();
-}
-
-void Net::applyWindPanel() {
-  const double a = windAzimuth_ * kDegrees, e = windElevation_ * kDegrees;
-  settings.wind.direction = Vec3(std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a));
-  if (dimension == 2) {
-    settings.wind.direction.z() = 0.0;
-    if (settings.wind.direction.norm() < 1e-9) settings.wind.direction = Vec3::UnitX();
-    settings.wind.direction.normalize();
-  }
+    settings.wind.direction = d;
+  };
+  // Each kind's k or kd: the settings and every spring of that kind.
+  const auto kindStiffness = [this](const char* label, SpringKind kind) {
+    return Parameter{label, "N/m", [this, kind] { return settings.springs[kind].stiffness; },
+                     [this, kind](double k) {
+                       settings.springs[kind].stiffness = k;
+                       for (Spring& s : springs) {
+                         if (s.kind == kind) s.springConstant = k;
+                       }
+                     },
+                     0.1, 1.0e5, true};
+  };
+  const auto kindDamping = [this](const char* label, SpringKind kind) {
+    return Parameter{label, "N s/m", [this, kind] { return settings.springs[kind].damping; },
+                     [this, kind](double kd) {
+                       settings.springs[kind].damping = kd;
+                       for (Spring& s : springs) {
+                         if (s.kind == kind) s.frictionConstant = kd;
+                       }
+                     },
+                     0.0, 10.0, false};
+  };
+  return {
+      Parameter::field("wind strength", settings.wind.model == WindModel::Relative ? "m/s" : "N/m^2",
+                       settings.wind.strength, 0.0, 40.0),
+      Parameter{"wind azimuth", "deg", azimuth, [=](double a) { setWind(a, elevation()); }, -180.0, 180.0, false},
+      Parameter{"wind elevation", "deg", elevation, [=](double e) { setWind(azimuth(), e); }, -90.0, 90.0, false},
+      kindStiffness("structural stiffness", SpringKind::Structural),
+      kindStiffness("shear stiffness", SpringKind::Shear),
+      kindStiffness("bend stiffness", SpringKind::Bend),
+      kindDamping("structural damping", SpringKind::Structural),
+      kindDamping("shear damping", SpringKind::Shear),
+      kindDamping("bend damping", SpringKind::Bend),
+      Parameter::field("gravity y", "m/s^2", gravitation.y(), -30.0, 30.0),
+      Parameter::field("air friction", "1/s", settings.airFriction, 0.0, 5.0),
+      Parameter::field("contact absorption", "", settings.absorption, 0.0, 2.0),
+      Parameter::field("contact friction", "", settings.friction, 0.0, 2.0),
+      Parameter::field("max stretch", "", settings.maxStretch, 0.01, 1.0),
+  };
 }
 
 }  // namespace springlab::net

@@ -65,9 +65,9 @@ NetParameters readNetParameters(SceneReader& r, const SceneSettings& settings) {
 
   // Springs by kind, pins, air.
   SceneReader springs = r.object("springs");
-  p.springs[kStructural] = readKind(springs, "structural");
-  p.springs[kShear] = readKind(springs, "shear");
-  p.springs[kBend] = readKind(springs, "bend");
+  p.springs[SpringKind::Structural] = readKind(springs, "structural");
+  p.springs[SpringKind::Shear] = readKind(springs, "shear");
+  p.springs[SpringKind::Bend] = readKind(springs, "bend");
   springs.rejectUnknownKeys();
   for (const std::string& name : r.strings("pinned")) p.pins.push_back(readPin(r, name));
   p.airFriction = r.nonNegative("air_friction");

@@ -59,10 +59,10 @@ Obstacle readObstacle(SceneReader& r, int dimension) {
   if (type == "plane") {
     o.type = ShapeType::Plane;
     o.center = r.vec3("point");
-    o.axis = r.vec3("normal");
-    if (o.axis.norm() < 1e-12) r.fail("normal", "must not be the zero vector");
-    o.axis.normalize();
-    if (dimension == 2 && o.axis.z() != 0.0) r.fail("normal", "must have z = 0 in a 2D scene");
+    o.normal = r.vec3("normal");
+    if (o.normal.norm() < 1e-12) r.fail("normal", "must not be the zero vector");
+    o.normal.normalize();
+    if (dimension == 2 && o.normal.z() != 0.0) r.fail("normal", "must have z = 0 in a 2D scene");
   } else if (type == "sphere") {
     o.type = ShapeType::Sphere;
     o.center = r.vec3("center");
@@ -71,8 +71,8 @@ Obstacle readObstacle(SceneReader& r, int dimension) {
   } else if (type == "box") {
     o.type = ShapeType::Box;
     o.center = r.vec3("center");
-    o.axis = r.vec3("half_extents");
-    if (!(o.axis.minCoeff() > 0.0)) r.fail("half_extents", "must all be > 0");
+    o.halfExtents = r.vec3("half_extents");
+    if (!(o.halfExtents.minCoeff() > 0.0)) r.fail("half_extents", "must all be > 0");
     o.movable = r.boolean("movable");
   } else {
     r.fail("type", "unknown obstacle \"" + type + "\"; known: plane, sphere, box");

@@ -26,14 +26,12 @@ SoftBody::SoftBody(int dim, SoftBodyParameters parameters) : Simulation(dim), p_
   restVolume_ = measure(p_.mesh);
   triangles = p_.mesh.triangles;
   gravitation = p_.gravitation;
-  gravityY_ = p_.gravitation.y();
-  restPressure_ = restVolume_ > 0.0 ? p_.gas / restVolume_ : 0.0;
 
   // At rest in the mesh's shape, moving as one.
   state.pos = p_.mesh.vertices;
   state.vel.assign(static_cast<size_t>(n), p_.velocity);
   initialObstacles_ = p_.obstacles;
-  moved_.assign(p_.obstacles.size(), false);
+  drags_.assign(p_.obstacles.size(), ColliderDrag{});
   markInitialState();
 }
 
@@ -48,9 +46,9 @@ double SoftBody::pressure(const State& s) const { return p_.gas > 0.0 ? gasPress
 
 Penetration SoftBody::penetration(const Vec3& x, const Obstacle& o) const {
   switch (o.type) {
-    case ShapeType::Plane: return planePenetration(x, o.center, o.axis);
+    case ShapeType::Plane: return planePenetration(x, o.center, o.normal);
     case ShapeType::Sphere: return spherePenetration(x, o.center, o.radius);
-    case ShapeType::Box: return boxPenetration(x, o.center, o.axis);
+    case ShapeType::Box: return boxPenetration(x, o.center, o.halfExtents);
     case ShapeType::Arrow: break;
   }
   return {};
@@ -96,11 +94,10 @@ double SoftBody::otherPotentialEnergy(const State& s) const {
 }
 
 void SoftBody::afterStep(double dt) {
-  // An obstacle the user did not move in this step stands still.
-  lastDt_ = dt;
+  // Dragged obstacles move to where the user holds them, at the velocity that takes (the
+  // contacts of the next step see it); the others stand still.
   for (size_t k = 0; k < p_.obstacles.size(); ++k) {
-    if (!moved_[k]) p_.obstacles[k].velocity.setZero();
-    moved_[k] = false;
+    drags_[k].finishStep(p_.obstacles[k].center, p_.obstacles[k].velocity, dt);
   }
 
   // Projection: push each mass out of every obstacle and fix its velocity (exercise 3.8).
@@ -120,28 +117,26 @@ void SoftBody::afterStep(double dt) {
 
 void SoftBody::onReset() {
   p_.obstacles = initialObstacles_;
-  moved_.assign(p_.obstacles.size(), false);
+  drags_.assign(p_.obstacles.size(), ColliderDrag{});
 }
 
-std::optional<int> SoftBody::floorIndex() const {
-  for (size_t k = 0; k < p_.obstacles.size(); ++k) {
-    const Obstacle& o = p_.obstacles[k];
-    if (o.type == ShapeType::Plane && o.axis.y() > 1.0 - 1e-9) return static_cast<int>(k);
-  }
-  return std::nullopt;
+std::optional<GroundPlane> SoftBody::floor() const {
+  return findGroundPlane(p_.obstacles, [](const Obstacle& o) {
+    return o.type == ShapeType::Plane ? std::optional<PlaneGeometry>(PlaneGeometry{o.center, o.normal}) : std::nullopt;
+  });
 }
 
 std::optional<double> SoftBody::groundHeight() const {
-  if (const auto k = floorIndex()) return p_.obstacles[*k].center.y();
+  if (const std::optional<GroundPlane> g = floor()) return g->height;
   return std::nullopt;
 }
 
 std::vector<int> SoftBody::drawnObstacles() const {
   // The floor is drawn by the viewer as its ground; every other obstacle as a shape.
   std::vector<int> drawn;
-  const auto floor = floorIndex();
+  const std::optional<GroundPlane> g = floor();
   for (int k = 0; k < static_cast<int>(p_.obstacles.size()); ++k) {
-    if (k != floor) drawn.push_back(k);
+    if (!g || g->index != k) drawn.push_back(k);
   }
   return drawn;
 }
@@ -149,15 +144,19 @@ std::vector<int> SoftBody::drawnObstacles() const {
 std::vector<Shape> SoftBody::shapes() const {
   std::vector<Shape> out;
   for (int k : drawnObstacles()) {
-    const Obstacle& o = p_.obstacles[k];
-    out.push_back(Shape{o.type, o.center, o.axis, o.radius, o.movable});
+    const Obstacle& o = p_.obstacles[static_cast<size_t>(k)];
+    switch (o.type) {
+      case ShapeType::Plane: out.push_back(Shape::plane(o.center, o.normal)); break;
+      case ShapeType::Sphere: out.push_back(Shape::sphere(o.center, o.radius, o.movable)); break;
+      case ShapeType::Box: out.push_back(Shape::box(o.center, o.halfExtents, o.movable)); break;
+      case ShapeType::Arrow: break;
+    }
   }
-  // The wind: an arrow above the body, as long as the body is wide at 10 m/s.
-  if (p_.windDrag > 0.0 && p_.wind.norm() > 0.0) {
-    const Bounds b = Simulation::reach();
-    const double size = (b.hi - b.lo).norm();
-    const Vec3 tail = Vec3(0.5 * (b.lo.x() + b.hi.x()), b.hi.y() + 0.25 * size, 0.5 * (b.lo.z() + b.hi.z()));
-    out.push_back(Shape{ShapeType::Arrow, tail, p_.wind * (0.05 * size), 0.0, false});
+  // The wind: an arrow above the body, half as long as the body is wide at 10 m/s.
+  if (p_.windDrag > 0.0) {
+    if (const std::optional<Shape> arrow = windArrow(Simulation::reach(), p_.wind, 0.05 * p_.wind.norm())) {
+      out.push_back(*arrow);
+    }
   }
   return out;
 }
@@ -165,14 +164,12 @@ std::vector<Shape> SoftBody::shapes() const {
 void SoftBody::moveShape(int index, const Vec3& center) {
   const std::vector<int> drawn = drawnObstacles();
   if (index < 0 || index >= static_cast<int>(drawn.size())) return;
-  Obstacle& o = p_.obstacles[drawn[index]];
-  if (!o.movable) return;
+  const size_t k = static_cast<size_t>(drawn[static_cast<size_t>(index)]);
+  if (!p_.obstacles[k].movable) return;
   // The drag's velocity pushes the body as the contact sees it; its energy is the user's.
   Vec3 target = center;
   if (dimension == 2) target.z() = 0.0;
-  o.velocity = lastDt_ > 0.0 ? Vec3((target - o.center) / lastDt_) : Vec3(Vec3::Zero());
-  o.center = target;
-  moved_[drawn[index]] = true;
+  drags_[k].holdAt(target);
   admitUserEnergy();
 }
 
@@ -180,7 +177,7 @@ Bounds SoftBody::reach() const {
   // The body, the obstacles that are not planes, and the floor under them.
   Bounds b = Simulation::reach();
   for (const Obstacle& o : p_.obstacles) {
-    const Vec3 half = o.type == ShapeType::Sphere ? Vec3::Constant(o.radius) : o.axis;
+    const Vec3 half = o.type == ShapeType::Sphere ? Vec3::Constant(o.radius) : o.halfExtents;
     if (o.type == ShapeType::Plane) continue;
     b.lo = b.lo.cwiseMin(o.center - half);
     b.hi = b.hi.cwiseMax(o.center + half);
@@ -209,44 +206,46 @@ std::vector<Observable> SoftBody::observables() const {
   };
 }
 
-std::vector<Parameter> SoftBody::parameters() {
+std::vector<Parameter> SoftBody::declareParameters() {
   // The pressure slider reaches four times the scene's pressure, or what would stretch the
   // springs by about a radius when the scene has none.
   const Bounds b = Simulation::reach();
   const double radius = std::max(0.5 * (b.hi - b.lo).maxCoeff(), 1e-3);
   const double top = 4.0 * std::max(p_.gas / std::max(restVolume_, 1e-12), p_.springConstant / radius);
+  // The edge springs share the body's constants.
+  const auto edgeSprings = [this](double SoftBodyParameters::*constant, double Spring::*field) {
+    return [this, constant, field](double value) {
+      p_.*constant = value;
+      for (Spring& s : springs) {
+        if (s.kind == SpringKind::Structural) s.*field = value;
+      }
+    };
+  };
   return {
-      {"pressure at rest volume", dimension == 2 ? "N/m" : "Pa", &restPressure_, 0.0, top, false},
-      {"spring constant", "N/m", &p_.springConstant, 1.0, 1.0e6, true},
-      {"spring friction", "N s/m", &p_.springFriction, 0.0, 100.0, false},
-      {"contact stiffness", "N/m", &p_.contact.stiffness, 0.0, 1.0e6, false},
-      {"friction (mu)", "", &p_.contact.friction, 0.0, 2.0, false},
-      {"gravity y", "m/s^2", &gravityY_, -30.0, 30.0, false},
+      // The gas: the pressure it has at the rest volume, P = nRT / V0.
+      Parameter{"pressure at rest volume", dimension == 2 ? "N/m" : "Pa",
+                [this] { return restVolume_ > 0.0 ? p_.gas / restVolume_ : 0.0; },
+                [this](double pressure) { p_.gas = pressure * restVolume_; }, 0.0, top, false},
+      Parameter{"spring constant", "N/m", [this] { return p_.springConstant; },
+                edgeSprings(&SoftBodyParameters::springConstant, &Spring::springConstant), 1.0, 1.0e6, true},
+      Parameter{"spring friction", "N s/m", [this] { return p_.springFriction; },
+                edgeSprings(&SoftBodyParameters::springFriction, &Spring::frictionConstant), 0.0, 100.0, false},
+      Parameter::field("contact stiffness", "N/m", p_.contact.stiffness, 0.0, 1.0e6),
+      Parameter::field("friction (mu)", "", p_.contact.friction, 0.0, 2.0),
+      Parameter::field("gravity y", "m/s^2", gravitation.y(), -30.0, 30.0),
   };
 }
 
-void SoftBody::parametersChanged() {
-  // The gas follows the pressure slider; edge springs share the body's constants.
-  p_.gas = restPressure_ * restVolume_;
-  for (Spring& s : springs) {
-    if (s.kind != kStructural) continue;
-    s.springConstant = p_.springConstant;
-    s.frictionConstant = p_.springFriction;
-  }
-  gravitation.y() = gravityY_;
-  admitUserEnergy();
-}
-
-double SoftBody::maxAngularFrequency() const {
+double SoftBody::angularFrequencyBound() const {
   // Springs by Gershgorin, plus at each mass the penalty contact spring and the stiffness the
   // gas adds: a face's pressure force changes by about P times a neighbour's displacement
   // times the edge it spans, so about P (sum of edge lengths at the mass) / 3 in 3D and 2 P
   // in 2D (the gas's bulk modulus is P).
-  const double w = springMaxAngularFrequency(*this);
+  const double w = springGershgorinBound(*this);
   const double pressureNow = std::max(p_.gas > 0.0 ? p_.gas / std::max(restVolume_, 1e-12) : 0.0, 0.0);
   std::vector<double> edgeLength(masses.size(), 0.0);
   for (const Spring& s : springs) {
-    if (s.kind != kStructural) continue;
+    if (s.kind != SpringKind::Structural) continue;
     edgeLength[s.mass1] += s.springLength;
     edgeLength[s.mass2] += s.springLength;
   }

@@ -3,7 +3,6 @@
 // of the lab's scene kind and integrators, built on the exercises of springlab/net/exercises.hpp;
 // the framework compiles this once and links it with the student's exercises (labs/02_net/)
 // or the reference (solutions/02_net/).
-#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +11,7 @@
 #include <springlab/net/exercises.hpp>
 #include <springlab/registry.hpp>
 #include <springlab/scene_reader.hpp>
+#include <springlab/scene_shapes.hpp>
 #include <springlab/simulation.hpp>
 #include <springlab/spring_batches.hpp>
 
@@ -26,12 +26,13 @@ class Net final : public Simulation {
  public:
   Net(int dimension, const NetParameters& parameters);
 
-  NetParameters settings;  // the scene's settings; panel edits land here
+  NetParameters settings;  // the scene's settings: model, edited through editModel (the panel)
 
-  std::string kind() const override { return "net"; }
+  // Physics.
   bool addForceJacobian(const State& s, ForceJacobian& J) override;
-  std::vector<Parameter> parameters() override;
-  void parametersChanged() override;
+
+  // Front end.
+  std::string kind() const override { return "net"; }
   std::vector<Shape> shapes() const override;
   void moveShape(int index, const Vec3& center) override;
   std::optional<double> groundHeight() const override;
@@ -48,26 +49,23 @@ class Net final : public Simulation {
   void accumulateForces(const State& s, std::vector<Vec3>& f) override;
   void afterStep(double dt) override;
   void onReset() override;
+  std::vector<Parameter> declareParameters() override;
 
  private:
-  void applyWindPanel();
-  // The wind's arrow above a box around the cloth, when there is wind.
-  std::optional<Shape> windArrow(const Bounds& box) const;
+  // The wind's arrow above the cloth, when there is wind.
+  std::optional<Shape> windArrow() const;
+  // The first plane of settings.planes facing straight up: the ground the viewer draws.
+  std::optional<GroundPlane> ground() const;
 
   int columns_ = 0;
   int rows_ = 0;
   std::vector<SphereCollider> spheres_;            // current colliders
-  std::vector<std::optional<Vec3>> sphereTarget_;  // [spheres] where a drag moves each next step
+  std::vector<ColliderDrag> drags_;                // [spheres] where the user holds each one
   SpringBatches batches_;                          // the springs split for threads (force pass)
   std::vector<Vec3> normals_;                      // [n] scratch for the wind
   std::vector<double> areas_;                      // [n] m^2
   std::vector<double> inverseMass_;                // [n] scratch for stretch limiting
   Vec3 pinnedCentre_ = Vec3::Zero();               // m, centre of the pinned masses at the start
-  double windAzimuth_ = 0.0;                       // degrees, panel
-  double windElevation_ = 0.0;                     // degrees, panel
-  double gravityY_ = 0.0;                          // m/s^2, panel
-  std::array<double, 3> stiffness_{};              // N/m per kind, panel
-  std::array<double, 3> damping_{};                // N s/m per kind, panel
 };
 
 // Registers the "net" scene kind and the implicit integrators "implicit_euler" and

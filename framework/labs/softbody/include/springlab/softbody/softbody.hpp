@@ -9,6 +9,7 @@
 
 #include <springlab/registry.hpp>
 #include <springlab/scene_reader.hpp>
+#include <springlab/scene_shapes.hpp>
 #include <springlab/simulation.hpp>
 #include <springlab/softbody/exercises.hpp>
 
@@ -18,16 +19,17 @@ namespace springlab::softbody {
 
 enum class ContactMethod { Penalty, Projection };
 
-// A rigid obstacle: a plane (center = a point on it, axis = unit normal), a sphere (center,
-// radius) or an axis-aligned box (center, axis = half extents). A movable one follows the
-// user's drag; its velocity comes from the drag.
+// A rigid obstacle: a plane (center = a point on it, normal), a sphere (center, radius) or
+// an axis-aligned box (center, halfExtents). A movable one follows the user's drag; its
+// velocity comes from the drag.
 struct Obstacle {
   ShapeType type = ShapeType::Plane;
-  Vec3 center = Vec3::Zero();  // m
-  Vec3 axis = Vec3::UnitY();   // plane normal, or box half extents (m)
-  double radius = 0.0;         // m, sphere
+  Vec3 center = Vec3::Zero();       // m: a point on the plane, the sphere's or the box's centre
+  Vec3 normal = Vec3::UnitY();      // plane: unit normal, pointing to the free side
+  Vec3 halfExtents = Vec3::Zero();  // box: half its edge lengths along x, y and z (m)
+  double radius = 0.0;              // sphere: radius (m)
   bool movable = false;
-  Vec3 velocity = Vec3::Zero();  // m/s, while the user drags it
+  Vec3 velocity = Vec3::Zero();     // m/s, while the user drags it
 };
 
 // Everything a soft body scene sets (keys and units in README's scene reference).
@@ -59,15 +61,16 @@ class SoftBody final : public Simulation {
  public:
   SoftBody(int dimension, SoftBodyParameters parameters);
 
+  // Physics.
+  double angularFrequencyBound() const override;
+
+  // Front end.
   std::string kind() const override { return "soft body"; }
   std::vector<Shape> shapes() const override;
   void moveShape(int index, const Vec3& center) override;
   std::optional<double> groundHeight() const override;
   Bounds reach() const override;
   std::vector<Observable> observables() const override;
-  std::vector<Parameter> parameters() override;
-  void parametersChanged() override;
-  double maxAngularFrequency() const override;
 
   const SoftBodyParameters& model() const { return p_; }
   std::vector<Obstacle>& obstacles() { return p_.obstacles; }
@@ -82,19 +85,17 @@ class SoftBody final : public Simulation {
   double otherPotentialEnergy(const State& s) const override;
   void afterStep(double dt) override;
   void onReset() override;
+  std::vector<Parameter> declareParameters() override;
 
  private:
   Penetration penetration(const Vec3& x, const Obstacle& o) const;
-  std::optional<int> floorIndex() const;  // the first horizontal plane facing up
+  std::optional<GroundPlane> floor() const;  // the first plane facing straight up
   std::vector<int> drawnObstacles() const;  // obstacles shapes() lists, in order
 
   SoftBodyParameters p_;
   double restVolume_ = 0.0;      // m^3, of the rest shape
-  double restPressure_ = 0.0;    // Pa, the target gas over the rest volume: the panel's slider
-  double gravityY_ = 0.0;        // m/s^2, the panel's slider
   std::vector<Obstacle> initialObstacles_;
-  std::vector<bool> moved_;      // [obstacles] the user moved it during this step
-  double lastDt_ = 0.0;          // s
+  std::vector<ColliderDrag> drags_;  // [obstacles] where the user holds each one
 };
 
 // Registers the "softbody" scene kind.
