@@ -23,13 +23,23 @@ class Seeded : public ::testing::Test {
     RecordProperty("seed", std::to_string(seed_));
   }
 
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
-  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
+  // How many random numbers the test drew: tools/seed_sweep.py sweeps only tests that drew some.
+  void TearDown() override { RecordProperty("random_draws", std::to_string(draws_)); }
+
+  double uniform(double lo, double hi) {
+    ++draws_;
+    return std::uniform_real_distribution<double>(lo, hi)(rng_);
+  }
+  int integer(int lo, int hi) {
+    ++draws_;
+    return std::uniform_int_distribution<int>(lo, hi)(rng_);
+  }
   Vec3 vec3(double lo, double hi) { return {uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)}; }
   std::string seedText() const { return "(seed " + std::to_string(seed_) + ")"; }
 
  private:
   std::uint64_t seed_ = 0;
+  std::uint64_t draws_ = 0;
   std::mt19937_64 rng_;
 };
 
