@@ -152,10 +152,12 @@ double settledBulge(double windSpeed) {
 }
 
 TEST_F(Trampoline, BulgeGrowsWithWind) {
-  const double weak = uniform(1.0, 3.0), strong = uniform(4.0, 8.0);
+  // The bulge of a membrane pinned at rest length grows between the cube root of the wind speed (pure
+  // stretch) and linearly; strong/weak >= 2 gives >= 2^(1/3) = 1.26 > 1.15 (weak up to 3 failed 2 % of seeds).
+  const double weak = uniform(1.0, 2.0), strong = uniform(4.0, 8.0);
   const double a = settledBulge(weak), b = settledBulge(strong);
   EXPECT_GT(a, 1e-4) << "a trampoline pinned on all edges bulges in a wind of " << weak << " m/s " << seedText();
-  EXPECT_GT(b, 1.2 * a) << "a stronger wind (" << strong << " m/s) bulges it further than " << weak << " m/s "
+  EXPECT_GT(b, 1.15 * a) << "a stronger wind (" << strong << " m/s) bulges it further than " << weak << " m/s "
                         << seedText();
 }
 
