@@ -57,11 +57,13 @@ def outside_includes(work, flags, name, compile_argv):
     return None
 
 
-def find_cheats(objects, work, build, lab, notes):
+def find_cheats(objects, work, build, lab, notes, others=None):
     """Files to grade as the skeleton's: they include the instructor's files, call the
     reference solution, or redefine the framework's, GoogleTest's or the grader's symbols.
     `objects` are the compiled files (with their .d files beside them), `build` the lab's
-    LabBuild; each finding is added to notes."""
+    LabBuild; each finding is added to notes. `others` maps a file's name to the symbols the
+    reference's other exercise files define: a file that defines another exercise's function
+    (which its grading program takes from the reference) is flagged too."""
     allowed = allowed_folders(work, build.compile_argv)
     flagged = {}
     for obj in objects:
@@ -81,6 +83,10 @@ def find_cheats(objects, work, build, lab, notes):
         if defined:
             flagged.setdefault(name, "redefines symbols of the framework, GoogleTest or the grader ("
                                + ", ".join(demangle(defined)[:3]) + ")")
+        foreign = defined_symbols([obj]) & (others or {}).get(name, set())
+        if foreign:
+            flagged.setdefault(name, "defines functions of another exercise file ("
+                               + ", ".join(demangle(foreign)[:3]) + "); each exercise is graded in its own file")
     for name, why in flagged.items():
         lost = exercises_in(lab.solution / name)
         what = f"exercise {', '.join(lost)} scores 0" if lost else "it was left out"
