@@ -317,11 +317,15 @@ class Session:
 def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, memory_mb=4096, only=None,
                   budget_factor=BUDGET_FACTOR, budget_floor=BUDGET_FLOOR):
     labs = discover_labs()
+    if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
+        raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
     if not (ROOT / "solutions").exists():
         raise GradeError(f"{ROOT}: no solutions/ folder: grading needs the instructor tree, not a student release")
     sandbox = Sandbox(timeout=timeout, memory_mb=memory_mb)
     compile_sandbox = Sandbox(timeout=COMPILE_TIMEOUT, memory_mb=0, file_mb=256)
-    cache = Cache(cache_path, labs, build=build, jobs=jobs)
+    # With --lab, only that lab's grading programs are built (a Gradescope assignment per lab).
+    cache = Cache(cache_path, [lab for lab in labs if only is None or only in (lab.name, lab.dir)] or labs,
+                  build=build, jobs=jobs)
     if compile_sandbox.identity():
         # The compiler runs as the sandbox user only if that user can read the framework's
         # headers (not so in a checkout under /root); else as us, with the include check.
