@@ -90,6 +90,10 @@ def cmd_grade(args):
         print(f"  note: {note}")
     for lab in graded.labs:
         print_lab(lab, quiet=args.quiet)
+        if lab.timing:
+            print(f"  ({lab.seconds:.1f} s: compiling {lab.timing.get('compile', 0):.1f} s, "
+                  f"{lab.timing.get('links', 0)} links {lab.timing.get('link', 0):.1f} s, "
+                  f"tests {lab.timing.get('test', 0):.1f} s)")
     percent = 100.0 * graded.score / graded.max_score if graded.max_score else 0.0
     print(f"Total: {graded.score:g} / {graded.max_score:g} points ({percent:.1f} %) in {graded.seconds:.1f} s")
     write_submission(graded, out, seed)

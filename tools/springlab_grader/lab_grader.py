@@ -47,6 +47,7 @@ class LabGrader:
         self.budget = budget
         self.notes = []
         self.links = 0
+        self.timing = {"compile": 0.0, "link": 0.0, "test": 0.0}
 
     def grade(self, submitted):
         """Compile, check, link and test; a LabResult whatever the student's code does."""
@@ -71,7 +72,9 @@ class LabGrader:
                 reasons[name] = f"{name} is the released skeleton's file, unchanged: not done yet"
         changed = {n: d for n, d in files.items() if n not in reasons}
 
+        mark = time.monotonic()
         objects, errors = self.compile_all(files, changed)
+        self.timing["compile"] = time.monotonic() - mark
         for name, error in sorted(errors.items()):
             lost = ", ".join(file_exercises.get(name, [])) or "none"
             notes.append(f"{name} does not compile, so it is graded as the released skeleton's {name}: "
@@ -95,7 +98,8 @@ class LabGrader:
                 return results
         else:
             results = self.grade_per_file(objects, solution, file_exercises, reasons)
-        return LabResult(lab.manifest, results, notes, self.seed, time.monotonic() - started)
+        self.timing["links"] = self.links
+        return LabResult(lab.manifest, results, notes, self.seed, time.monotonic() - started, dict(self.timing))
 
     @staticmethod
     def object_map(paths):
@@ -133,9 +137,11 @@ class LabGrader:
                                   f"The linker's first errors:\n{error}")
                 failed.update({test: f"{key} does not link (see the note)" for test in tests})
                 continue
+            mark = time.monotonic()
             for r in grade_binary(str(binary), self.lab.manifest, self.seed, self.sandbox, self.jobs,
                                   present=self.build.tests_present, only=set(tests), budget=self.budget):
                 outcome[r.test["name"]] = r
+            self.timing["test"] += time.monotonic() - mark
         return [outcome.get(t["name"]) or TestResult(ex, t, False, failed.get(t["name"], "not run"), 0.0)
                 for ex, t in self.wanted_tests()]
 
@@ -204,9 +210,11 @@ class LabGrader:
     # -- linking
     def link_all(self, programs):
         """{key: (binary, None) or (None, errors)} for {key: [exercise objects]}, side by side."""
+        mark = time.monotonic()
         with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, self.jobs)) as pool:
             done = dict(zip(programs, pool.map(self.link, programs, programs.values())))
         self.links += len(programs)
+        self.timing["link"] += time.monotonic() - mark
         return done
 
     def link(self, key, objects):

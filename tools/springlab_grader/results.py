@@ -23,6 +23,7 @@ class LabResult:
     notes: list = dataclasses.field(default_factory=list)  # build errors, replaced files, ...
     seed: int = 0
     seconds: float = 0.0
+    timing: dict = dataclasses.field(default_factory=dict)  # seconds compiling, linking, testing; links
 
     @property
     def score(self):
