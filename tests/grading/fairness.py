@@ -40,7 +40,7 @@ COMPILE_ERROR = ("02_net", "wind.cpp")
 
 
 def exercise_of(lab_dir, name):
-    ids = exercises_in(ROOT / "solutions" / lab_dir / name)
+    ids = sorted(set(exercises_in(ROOT / "solutions" / lab_dir / name)))
     if len(ids) != 1:
         raise SystemExit(f"fairness.py: solutions/{lab_dir}/{name} should hold one exercise, holds {ids}")
     return ids[0]
