@@ -4,6 +4,7 @@ skeleton's, archive the objects with the lab's given objects, link the grading p
 wrote it down, and run every test in the sandbox; then whole submissions and whole classes."""
 import concurrent.futures
 import dataclasses
+import functools
 import hashlib
 import os
 import pathlib
@@ -86,7 +87,7 @@ class LabGrader:
         per_file = bool(solution) and all(n in solution and n in skeleton_objects for n in skeleton)
         others = {}
         if per_file:
-            symbols = {n: integrity.defined_symbols([solution[n]]) for n in skeleton}
+            symbols = {n: reference_symbols(solution[n]) for n in skeleton}
             others = {n: set().union(*(s for m, s in symbols.items() if m != n)) for n in skeleton}
         for name in integrity.find_cheats(list(objects.values()), self.work, build, lab, notes, others):
             objects.pop(name, None)
@@ -236,6 +237,17 @@ class LabGrader:
         os.chmod(bin_dir, 0o755)
         os.chmod(binary, 0o755)
         return binary, None
+
+
+@functools.lru_cache(maxsize=256)
+def _symbols(path, stamp):
+    return frozenset(integrity.defined_symbols([path]))
+
+
+def reference_symbols(path):
+    """The strong symbols of a reference exercise object, read once per version of the file."""
+    stat = os.stat(path)
+    return _symbols(str(path), (stat.st_mtime_ns, stat.st_size))
 
 
 def first_errors(output, lines=25):
