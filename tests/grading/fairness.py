@@ -9,6 +9,8 @@ points of the exercise at fault, test by test against the reference's own outcom
     sign_bug_3_3        Lab 3's volume with the wrong sign (exercise 3.3): only 3.3's tests
     compile_error_2_4   Lab 2's wind.cpp does not compile: only exercise 2.4's tests fail, and
                         the report names the file and shows the compiler's errors
+    defines_other_exercise  Lab 1's spring_force.cpp also defines explicit Euler's step: the
+                        file is graded as the skeleton's (1.1 and 1.4, not done, score 0)
     whole_repository    a student's clone: the tree (framework/, tests/, ...) with the reference
                         copied into labs/: full marks (tests/01_rope is not taken for a lab)
     whole_repository.zip  the same, zipped under a top folder
@@ -47,7 +49,7 @@ def exercise_of(lab_dir, name):
 
 
 def make(folder):
-    """Write the class; {student: (lab dir, exercise allowed to fail or None)}."""
+    """Write the class; {student: (lab dir, the exercises that must lose points there)}."""
     shutil.rmtree(folder, ignore_errors=True)
     folder.mkdir(parents=True)
     expect = {}
@@ -63,11 +65,25 @@ def make(folder):
         if old not in text:
             raise SystemExit(f"fairness.py: solutions/{lab}/{name} no longer has the line to break; update SIGN_BUGS")
         path.write_text(text.replace(old, new, 1))
-        expect[student] = (lab, exercise_of(lab, name))
+        expect[student] = (lab, {exercise_of(lab, name)})
     lab, name = COMPILE_ERROR
     path = reference_copy("compile_error_2_4") / lab / name
     path.write_text(path.read_text() + "\nthis line is not C++;\n")
-    expect["compile_error_2_4"] = (lab, exercise_of(lab, name))
+    expect["compile_error_2_4"] = (lab, {exercise_of(lab, name)})
+    # A cheat: Lab 1's spring_force.cpp also defines explicit Euler's step (left undone in its
+    # own file), so its program would take the student's 1.4 instead of the reference's. The
+    # file is graded as the skeleton's: 1.1 and 1.4 score 0, nothing else changes.
+    folder_1 = reference_copy("defines_other_exercise") / "01_rope"
+    shutil.copy(ROOT / "labs" / "01_rope" / "explicit_euler.cpp", folder_1 / "explicit_euler.cpp")
+    text = (folder_1 / "spring_force.cpp").read_text()
+    marker = "}  // namespace springlab::rope"
+    if marker not in text:
+        raise SystemExit("fairness.py: solutions/01_rope/spring_force.cpp changed shape; update defines_other_exercise")
+    (folder_1 / "spring_force.cpp").write_text(text.replace(marker, (
+        "PhasePoint explicitEulerStep(const PhasePoint& s, const Vec3& a, double dt) {\n"
+        "  return {s.pos + s.vel * dt, s.vel + a * dt};\n}\n" + marker), 1))
+    expect["defines_other_exercise"] = ("01_rope", {exercise_of("01_rope", "spring_force.cpp"),
+                                                    exercise_of("01_rope", "explicit_euler.cpp")})
 
     # A student's clone: the tree without solutions/ and build folders, the reference in labs/.
     repo = folder / "whole_repository"
@@ -80,12 +96,12 @@ def make(folder):
     for lab_folder in (ROOT / "solutions").iterdir():
         for source in lab_folder.glob("*.cpp"):
             shutil.copy(source, repo / "labs" / lab_folder.name / source.name)
-    expect["whole_repository"] = (None, None)
+    expect["whole_repository"] = (None, set())
     with zipfile.ZipFile(folder / "whole_repository_zip.zip", "w") as zf:
         for path in sorted(repo.rglob("*")):
             if path.is_file() and "tests" not in path.relative_to(repo).parts[:1]:
                 zf.write(path, f"springlab-main/{path.relative_to(repo)}")
-    expect["whole_repository_zip"] = (None, None)
+    expect["whole_repository_zip"] = (None, set())
     return expect
 
 
@@ -124,21 +140,23 @@ def main():
 
     expect = make(work / "class")
     grade(args, ["grade-all", str(work / "class")], work / "grades")
-    for student, (lab, exercise) in expect.items():
+    for student, (lab, exercises) in expect.items():
         data = json.loads((work / "grades" / student / "results.json").read_text())
         got = outcomes(data)
         if sorted(got) != sorted(want):
             problems.append(f"{student}: results.json does not list the reference's tests")
             continue
-        lost = 0
+        lost = set()
         for key, (status, ex) in got.items():
-            at_fault = key[0] == lab and ex == exercise
+            at_fault = key[0] == lab and ex in exercises
             if not at_fault and status != want[key][0]:
-                problems.append(f"{student}: {key[1]} ({key[0]}, exercise {ex}) is {status}: only exercise "
-                                f"{exercise} of {lab} may lose points")
-            lost += at_fault and status != "passed"
-        if exercise is not None and lost == 0:
-            problems.append(f"{student}: no test of exercise {exercise} failed: the sabotage went unnoticed")
+                problems.append(f"{student}: {key[1]} ({key[0]}, exercise {ex}) is {status}: only exercise(s) "
+                                f"{', '.join(sorted(exercises))} of {lab} may lose points")
+            if at_fault and status != "passed":
+                lost.add(ex)
+        if lost != exercises:
+            problems.append(f"{student}: exercise(s) {', '.join(sorted(exercises - lost))} lost no points: "
+                            f"the fault went unnoticed")
         print(f"{student}: {data['score']:g}/{data['max_score']:g}")
     report = (work / "grades" / "compile_error_2_4" / "report.md").read_text()
     if f"{COMPILE_ERROR[1]} does not compile" not in report or "error" not in report:
