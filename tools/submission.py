@@ -114,7 +114,8 @@ def cmd_grade_all(args):
           file=sys.stderr)
     started = time.monotonic()
     graded_all = grade_class(session, entries, out, args.jobs)
-    write_gradebook(out / "gradebook.csv", session.labs, graded_all)
+    graded_labs = [lab for lab in session.labs if session.only is None or session.only in (lab.name, lab.dir)]
+    write_gradebook(out / "gradebook.csv", graded_labs, graded_all)
     print(f"gradebook: {out / 'gradebook.csv'} ({len(entries)} students, {time.monotonic() - started:.1f} s); "
           f"reports in {out}/<student>/")
     return 0
