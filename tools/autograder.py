@@ -2,7 +2,8 @@
 """Write a Gradescope autograder bundle: a zip with setup.sh and run_autograder at its root and
 this instructor tree under springlab/ (Gradescope unzips it into /autograder/source).
 
-    tools/autograder.py OUT.zip
+    tools/autograder.py OUT.zip               every lab in one assignment
+    tools/autograder.py OUT.zip --lab rope    one assignment per lab: this lab only
 
 setup.sh installs the Debian packages, builds the grading cache once (framework, reference
 oracle, test objects) and makes solutions/ and the hidden tests unreadable to other users.
@@ -25,12 +26,20 @@ def main():
     ap = argparse.ArgumentParser(prog="springlab autograder", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out", help="the bundle to write, e.g. autograder.zip")
+    ap.add_argument("--lab", help="grade this lab only (rope or 01_rope): one Gradescope assignment per lab")
     args = ap.parse_args()
     if not (ROOT / "solutions").is_dir():
         print("springlab autograder: this tree has no solutions/: bundle the instructor tree", file=sys.stderr)
         return 2
-    out, count = gradescope.bundle(args.out, release.source_files())
-    print(f"Gradescope autograder written to {out}: setup.sh, run_autograder and {count} files under springlab/")
+    if args.lab:
+        from springlab_grader.labs import discover_labs  # noqa: PLC0415
+        names = [n for lab in discover_labs() for n in (lab.name, lab.dir)]
+        if args.lab not in names:
+            print(f"springlab autograder: --lab {args.lab}: no such lab ({', '.join(names[::2])})", file=sys.stderr)
+            return 2
+    out, count = gradescope.bundle(args.out, release.source_files(), lab=args.lab)
+    print(f"Gradescope autograder written to {out}{f' for {args.lab} only' if args.lab else ''}: setup.sh, "
+          f"run_autograder and {count} files under springlab/")
     return 0
 
 

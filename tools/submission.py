@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Grade student submissions against this instructor tree: one (`grade`) or a class (`grade-all`).
 
-    tools/submission.py grade SUBMISSION [--out DIR]     a labs/ folder, a folder holding one, or a .zip
+    tools/submission.py grade SUBMISSION [--out DIR]     a labs/ folder, a whole repository, lab folders,
+                                                         or a .zip of any of these
+    tools/submission.py grade SUBMISSION --lab rope      that lab only (also: the flat files of that lab)
     tools/submission.py grade-all DIR [--out DIR]        every folder and .zip directly under DIR
 
 How: a cache build of the framework, the reference "oracle" and the grading tests' objects
@@ -11,7 +13,20 @@ compiled (in a sandbox, as `nobody` when root), against the framework's headers,
 with the lab's given objects (framework/labs/<name>/, compiled once) and the cached objects
 into that lab's grading program; any other file of the submission is ignored and the report
 says so; then every grading test runs
-in its own sandboxed process. A lab that does not compile scores 0 alone.
+in its own sandboxed process.
+
+Points follow the exercise: each exercise file is linked into its own grading program with
+the reference's other exercise files, and only its exercises' tests run there, so a bug in one
+exercise costs that exercise's points alone. A file that does not compile is graded as the
+skeleton's (its exercises score 0) and the report shows the compiler's first errors. Each lab
+has a time budget (a multiple of the reference's own grading time, measured once and kept in
+the cache build, plus a floor); once it is spent, the remaining tests fail with "time budget
+spent".
+
+A lab is found in a submission as a folder named like it (01_rope) that holds exercise files,
+preferably under labs/ (so a whole repository, with or without tests/, works); flat exercise
+files go to --lab, else to the lab whose skeleton has those file names. A lab with no files
+is reported as not submitted.
 
 Labs are discovered from CMakeLists.txt (`springlab_add_lab(NAME rope DIR 01_rope)`) with their
 manifest tests/<dir>/exercises.json; nothing here knows a particular lab.
@@ -32,7 +47,7 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.errors import GradeError  # noqa: E402
-from springlab_grader.lab_grader import grade_class, grade_submission, start_session  # noqa: E402
+from springlab_grader.lab_grader import BUDGET_FACTOR, BUDGET_FLOOR, grade_class, start_session  # noqa: E402
 from springlab_grader.labs import ROOT, discover_labs  # noqa: E402,F401
 from springlab_grader.reports import print_lab, write_gradebook, write_submission  # noqa: E402
 from springlab_grader.sandbox import TIMEOUT  # noqa: E402
@@ -48,11 +63,19 @@ def common_options(ap):
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="processes at once (default: cores)")
     ap.add_argument("--timeout", type=float, default=TIMEOUT, help="seconds per test")
     ap.add_argument("--memory-limit-mb", type=int, default=4096, help="address space per test; 0 = none")
+    ap.add_argument("--lab", help="grade this lab only (rope or 01_rope): one assignment per lab; flat exercise "
+                                  "files are taken as this lab's")
+    ap.add_argument("--budget-factor", type=float, default=BUDGET_FACTOR,
+                    help=f"a lab's tests may run this many times the reference's own time, plus the floor "
+                         f"(default {BUDGET_FACTOR:g}; 0 = no budget)")
+    ap.add_argument("--budget-floor", type=float, default=BUDGET_FLOOR,
+                    help=f"seconds added to each lab's time budget (default {BUDGET_FLOOR:g})")
 
 
 def setup(args):
     return start_session(args.cache, build=not args.no_build, jobs=args.jobs, seed=args.seed,
-                         timeout=args.timeout, memory_mb=args.memory_limit_mb)
+                         timeout=args.timeout, memory_mb=args.memory_limit_mb, only=args.lab,
+                         budget_factor=args.budget_factor, budget_floor=args.budget_floor)
 
 
 def cmd_grade(args):
@@ -61,13 +84,16 @@ def cmd_grade(args):
     session = setup(args)
     seed = session.seed
     out = pathlib.Path(args.out or ROOT / "out" / "grades" / pathlib.Path(args.submission).resolve().name)
-    graded = grade_submission(args.submission, session.cache, session.labs, seed, args.jobs, session.sandbox,
-                              session.compile_sandbox)
+    graded = session.grade(args.submission, args.jobs)
     print(f"Grade of {args.submission} (SPRINGLAB_SEED={seed})")
     for note in graded.notes:
         print(f"  note: {note}")
     for lab in graded.labs:
         print_lab(lab, quiet=args.quiet)
+        if lab.timing:
+            print(f"  ({lab.seconds:.1f} s: compiling {lab.timing.get('compile', 0):.1f} s, "
+                  f"{lab.timing.get('links', 0)} links {lab.timing.get('link', 0):.1f} s, "
+                  f"tests {lab.timing.get('test', 0):.1f} s)")
     percent = 100.0 * graded.score / graded.max_score if graded.max_score else 0.0
     print(f"Total: {graded.score:g} / {graded.max_score:g} points ({percent:.1f} %) in {graded.seconds:.1f} s")
     write_submission(graded, out, seed)
@@ -88,7 +114,8 @@ def cmd_grade_all(args):
           file=sys.stderr)
     started = time.monotonic()
     graded_all = grade_class(session, entries, out, args.jobs)
-    write_gradebook(out / "gradebook.csv", session.labs, graded_all)
+    graded_labs = [lab for lab in session.labs if session.only is None or session.only in (lab.name, lab.dir)]
+    write_gradebook(out / "gradebook.csv", graded_labs, graded_all)
     print(f"gradebook: {out / 'gradebook.csv'} ({len(entries)} students, {time.monotonic() - started:.1f} s); "
           f"reports in {out}/<student>/")
     return 0

@@ -6,8 +6,7 @@ below) replaced by something hostile: a crash, a hang, a forged result, a call o
 reference, ... Everything else is honest. The class is graded with `grade-all`, and each
 submission must get exactly the points of its honest parts: test by test, the outcome of the
 "control" submission, which is solutions/ with the target file taken from the skeleton (the
-exercise not done). A few have other expectations (a lab that does not compile scores 0 for
-that lab only; an empty submission scores 0; a zip that tries to escape keeps its honest
+exercise not done). A few have other expectations (an empty submission scores 0; a zip that tries to escape keeps its honest
 files). Any further lab is graded in every submission too and must score what the
 reference scores.
 
@@ -128,7 +127,7 @@ PhasePoint explicitEulerStep(const PhasePoint& s, const Vec3& a, double dt);
   return {answer.pos, answer.vel};""", "control"),
     "does_not_compile": ("", "", """
   return {s.pos + s.vel * dt, s.vel + a * dt}  // a missing semicolon
-  undeclared_variable += 1;""", "lab_zero"),
+  undeclared_variable += 1;""", "control"),
 }
 
 
@@ -312,7 +311,7 @@ def main():
         if float(row["total"]) != data["score"]:
             problems.append(f"gradebook.csv: {row['student']} total {row['total']} != results.json {data['score']}")
     report = (out / "does_not_compile" / "report.md").read_text()
-    if "does not compile" not in report or "error" not in report:
+    if "does not compile" not in report or "error" not in report or "explicit_euler.cpp" not in report:
         problems.append("does_not_compile: the report does not show the compiler's errors")
     if "not graded" not in (out / "edits_header" / "report.md").read_text():
         problems.append("edits_header: the report does not say the edited header was not graded")

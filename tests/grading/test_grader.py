@@ -152,8 +152,45 @@ class Outputs(unittest.TestCase):
 
     def test_markdown_per_exercise(self):
         text = reports.report_markdown([self.lab()], "Grade of x", 1)
-        self.assertIn("### Exercise 9.1: one (2 / 3 points)", text)
+        self.assertIn("### Exercise 9.1: one (2 / 3 points: public 2/2, hidden 0/1)", text)
         self.assertIn("a note", text)
+
+    def test_public_and_hidden_apart(self):
+        lab = self.lab()
+        self.assertEqual(lab.split(), (2, 2, 0, 1, 0))
+        # A student's own build (`check`) has no hidden tests: their points are "not run here".
+        check = results.LabResult(lab.manifest, lab.results[:1])
+        self.assertEqual(check.split(), (2, 2, 0, 0, 1))
+        self.assertEqual(results.split_text(check.split()),
+                         "public 2/2, hidden 1 point not run here, the grader runs them")
+        import io
+        out = io.StringIO()
+        reports.print_lab(check, file=out)
+        self.assertIn("Exercise 9.1: one  2/3  (public 2/2, hidden 1 point not run here", out.getvalue())
+
+
+class TimeBudget(unittest.TestCase):
+    def test_lab_and_submission_budgets(self):
+        total = gtest_runner.Budget(10, what="submission")
+        lab_a, lab_b = gtest_runner.Budget(8, parent=total), gtest_runner.Budget(None, parent=total)
+        lab_a.spend(7)
+        self.assertIsNone(lab_a.exhausted())
+        lab_a.spend(2)
+        self.assertIs(lab_a.exhausted(), lab_a)
+        self.assertIn("time budget spent", lab_a.exhausted().message())
+        self.assertIsNone(lab_b.exhausted())
+        lab_b.spend(1.5)  # the submission's 10 s: 9 + 1.5
+        self.assertIs(lab_b.exhausted(), total)
+
+    def test_spent_budget_fails_the_remaining_tests(self):
+        m = json.loads(json.dumps(MANIFEST))
+        budget = gtest_runner.Budget(1)
+        budget.spend(2)
+        got = gtest_runner.grade_binary("/nonexistent", m, 1, None, 1, present={"A.B", "H.B"}, budget=budget)
+        self.assertEqual([(r.passed, "time budget spent" in r.message) for r in got], [(False, True), (False, True)])
+        got = gtest_runner.grade_binary("/nonexistent", m, 1, None, 1, present={"A.B", "H.B"}, budget=budget,
+                                        only={"H.B"})
+        self.assertEqual([r.test["name"] for r in got], ["H.B"])
 
 
 class SubmissionFolders(Temp):
@@ -167,11 +204,51 @@ class SubmissionFolders(Temp):
         with self.assertRaisesRegex(errors.GradeError, "holds no submission"):
             submission.submissions_in(self.tmp)
 
+    def exercise_files(self, lab, folder, count=None):
+        folder.mkdir(parents=True, exist_ok=True)
+        for name in sorted(submission.exercise_names(lab))[:count]:
+            (folder / name).write_text("// mine\n")
+
     def test_lab_found_at_any_depth(self):
         lab = labs.discover_labs()[0]
-        (self.tmp / "repo" / "labs" / lab.dir).mkdir(parents=True)
-        (self.tmp / "deeper" / "x" / lab.dir).mkdir(parents=True)
+        self.exercise_files(lab, self.tmp / "repo" / "labs" / lab.dir)
+        self.exercise_files(lab, self.tmp / "deeper" / "x" / lab.dir)
         self.assertEqual(submission.find_lab_folder(self.tmp, lab), self.tmp / "repo" / "labs" / lab.dir)
+
+    def test_whole_repository_is_not_taken_for_its_tests(self):
+        # A student's clone: tests/01_rope (no exercise files) sits beside labs/01_rope.
+        lab = labs.discover_labs()[0]
+        (self.tmp / "clone" / "tests" / lab.dir / "public").mkdir(parents=True)
+        (self.tmp / "clone" / "tests" / lab.dir / "exercises.json").write_text("{}")
+        self.exercise_files(lab, self.tmp / "clone" / "labs" / lab.dir, 2)
+        self.assertEqual(submission.find_lab_folder(self.tmp, lab), self.tmp / "clone" / "labs" / lab.dir)
+        (self.tmp / "clone" / "labs" / lab.dir).rename(self.tmp / "clone" / "labs" / "elsewhere")
+        self.assertIsNone(submission.find_lab_folder(self.tmp, lab))
+
+    def test_flat_files_go_to_one_lab(self):
+        all_labs = labs.discover_labs()
+        rope, net = all_labs[0], all_labs[1]
+        self.exercise_files(rope, self.tmp / "wrapped")  # a zip's top folder around flat files
+        notes = []
+        found = submission.locate_labs(self.tmp, all_labs, notes)
+        self.assertEqual(found[rope.dir], self.tmp / "wrapped")
+        self.assertTrue(all(found[lab.dir] is None for lab in all_labs[1:]), found)
+        # --lab: only that lab, even when another lab's names would match better.
+        found = submission.locate_labs(self.tmp, all_labs, notes, only=net.name)
+        self.assertEqual(list(found), [net.dir])
+        shared = submission.exercise_names(rope) & submission.exercise_names(net)
+        self.assertEqual(found[net.dir], self.tmp / "wrapped" if shared else None)
+
+    def test_ambiguous_flat_files_ask_for_lab(self):
+        all_labs = labs.discover_labs()
+        shared = sorted(submission.exercise_names(all_labs[0]) & submission.exercise_names(all_labs[1]))
+        if not shared:
+            self.skipTest("no file name shared by Labs 1 and 2")
+        (self.tmp / shared[0]).write_text("// mine\n")
+        notes = []
+        found = submission.locate_labs(self.tmp, all_labs, notes)
+        self.assertTrue(all(v is None for v in found.values()))
+        self.assertIn("--lab", notes[0])
 
     def test_depfile(self):
         self.assertEqual(integrity.parse_depfile("obj/a.o: src/a.cpp \\\n /usr/x\\ y.h src/b.hpp\n"),
@@ -196,6 +273,14 @@ class LinkFileFromCMake(Temp):
         self.assertEqual(link.argv("/w/libstudent.a", "/w/out"),
                          ["/usr/bin/c++", "-O3", "-a", "b", "-Wl,-z,defs", "/b/t1.o", "/b/main.o", "-o", "/w/out",
                           "/w/libstudent.a", "/b/libgtest.a", "/b/liboracle.a", "/b/libcore.a"])
+
+    def test_per_file_objects(self):
+        link = build_cache.read_link_file(self.write(LINK))
+        self.assertEqual((link.solution_objects, link.skeleton_objects, link.reference_program), ([], [], ""))
+        link = build_cache.read_link_file(self.write(dict(LINK, solution_objects=["/b/s/a.cpp.o"],
+                                                          skeleton_objects=["/b/k/a.cpp.o"],
+                                                          reference_program="/b/toy_grading_reference")))
+        self.assertEqual((link.solution_objects, link.reference_program), (["/b/s/a.cpp.o"], "/b/toy_grading_reference"))
 
     def test_no_oracle(self):
         self.assertEqual(build_cache.read_link_file(self.write(dict(LINK, oracle=""))).oracle, "")

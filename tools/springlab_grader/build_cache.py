@@ -15,7 +15,7 @@ import subprocess
 import threading
 
 from .errors import GradeError
-from .gtest_runner import listed_tests
+from .gtest_runner import grade_binary, listed_tests
 from .integrity import defined_symbols
 from .labs import ROOT
 from .sandbox import tail
@@ -34,6 +34,13 @@ class LinkFile:
     oracle: str            # the reference "oracle" library; "" when the tree has none
     libraries: list        # after the student's archive, in link order
     skeleton_program: str  # the grading program CMake linked with the released skeleton
+    # The reference's exercise objects, one per file (springlab_<name>_solution_objects), and
+    # the skeleton's (springlab_<name>_student_objects): a test of exercise X links the
+    # student's file of X with the reference's other files; a file that does not compile is
+    # the skeleton's. Empty in a build without them (then one program for the whole lab).
+    solution_objects: list = dataclasses.field(default_factory=list)
+    skeleton_objects: list = dataclasses.field(default_factory=list)
+    reference_program: str = ""  # <name>_grading_reference: its run sets the time budget
 
     def argv(self, student_archive, output):
         return [self.compiler, *self.flags, *self.test_objects, "-o", str(output), str(student_archive),
@@ -69,6 +76,10 @@ def read_link_file(path):
     fields = {}
     for field in dataclasses.fields(LinkFile)[1:]:
         value = data.get(field.name)
+        if value is None and field.default is not dataclasses.MISSING:
+            continue
+        if value is None and field.default_factory is not dataclasses.MISSING:
+            continue
         if field.type is list:
             if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
                 raise GradeError(f"{path}: {field.name}: missing, or not a list of strings; {again}")
@@ -199,12 +210,40 @@ class Cache:
             run = subprocess.run(configure, capture_output=True, text=True, env=env)
             if run.returncode != 0:
                 raise GradeError(f"configuring the grading build {self.path} failed:\n{run.stdout}{run.stderr}")
-        targets = [t for lab in self.labs for t in ("--target", f"{lab.name}_grading_student")]
+        targets = [t for lab in self.labs
+                   for target in (f"{lab.name}_grading_student", f"{lab.name}_grading_reference",
+                                  f"springlab_{lab.name}_solution_objects")
+                   for t in ("--target", target)]
         run = subprocess.run(["cmake", "--build", str(self.path), "-j", str(jobs), *targets],
                              capture_output=True, text=True, env=env)
         if run.returncode != 0:
             raise GradeError(f"building the grading build {self.path} failed (the instructor tree does not build):\n"
                              + tail(run.stdout + run.stderr, 40))
+
+    def reference_seconds(self, lab, sandbox):
+        """The reference's own grading time for a lab (the sum of its tests' seconds), measured
+        once on the trusted side and kept in grading/<name>_reference_time.json beside the
+        link, keyed by the reference program's bytes; None when the build has no reference."""
+        program = self.lab(lab, sandbox).link.reference_program
+        if not program or not os.access(program, os.X_OK):
+            return None
+        digest = hashlib.sha256(pathlib.Path(program).read_bytes()).hexdigest()
+        record = self.path / "grading" / f"{lab.name}_reference_time.json"
+        with self.lock:
+            try:
+                data = json.loads(record.read_text())
+                if data.get("program_sha256") == digest and isinstance(data.get("seconds"), (int, float)):
+                    return float(data["seconds"])
+            except (OSError, ValueError):
+                pass
+            results = grade_binary(program, lab.manifest, 1, sandbox, 1)
+            seconds = sum(r.seconds for r in results)
+            temporary = record.with_name(f"{record.name}.{os.getpid()}")
+            temporary.write_text(json.dumps({"program_sha256": digest, "seconds": seconds,
+                                             "passed": sum(r.passed for r in results),
+                                             "tests": len(results)}, indent=1) + "\n")
+            os.replace(temporary, record)
+            return seconds
 
     def link_file(self, lab):
         return self.path / "grading" / f"{lab.name}_link.json"

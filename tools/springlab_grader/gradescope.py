@@ -16,7 +16,8 @@ chmod +x "$SRC/springlab"
 "$SRC/springlab" setup
 # Build the framework, the reference oracle and the grading tests once; each submission then
 # compiles only its own lab files.
-python3 "$SRC/tools/submission.py" prepare
+# (With --lab, that lab's only: one Gradescope assignment per lab.)
+python3 "$SRC/tools/submission.py" prepare @LAB_ARGS@
 # Student code runs as nobody: keep the reference and the hidden tests out of its reach.
 chmod -R go-rwx "$SRC/solutions" "$SRC"/tests/*/hidden "$SRC/tests/grading"
 """
@@ -30,7 +31,7 @@ mkdir -p "$RESULTS"
 rm -f "$RESULTS/results.json"
 LOG="$(mktemp)"
 # shellcheck disable=SC2086
-python3 "$SRC/tools/submission.py" grade "$AUTOGRADER/submission" --out "$RESULTS" \
+python3 "$SRC/tools/submission.py" grade "$AUTOGRADER/submission" --out "$RESULTS" @LAB_ARGS@ \
   ${SPRINGLAB_AUTOGRADER_ARGS:-} 2>&1 | tee "$LOG"
 status="${PIPESTATUS[0]}"
 if [[ "$status" != 0 || ! -s "$RESULTS/results.json" ]]; then
@@ -48,9 +49,14 @@ exit 0
 """
 
 
-def bundle(out, source_files):
+def bundle(out, source_files, lab=None):
     """Write the bundle to out (.zip) with the tree's files (paths relative to the tree, as
-    tools/release.py's source_files() lists them); (its path, how many files)."""
+    tools/release.py's source_files() lists them); (its path, how many files). With `lab`
+    (rope or 01_rope), the bundle grades that lab only (one Gradescope assignment per lab,
+    flat exercise files taken as that lab's); else every lab."""
+    lab_args = f"--lab {lab}" if lab else ""
+    if lab and not all(c.isalnum() or c == "_" for c in lab):
+        raise SystemExit(f"springlab autograder: --lab {lab}: not a lab name")
     out = pathlib.Path(out).resolve()
     if out.suffix != ".zip":
         raise SystemExit(f"springlab autograder: {out}: the bundle's name must end in .zip")
@@ -60,7 +66,7 @@ def bundle(out, source_files):
         for name, text in (("setup.sh", SETUP), ("run_autograder", RUN)):
             info = zipfile.ZipInfo(name)
             info.external_attr = (stat.S_IFREG | 0o755) << 16
-            zf.writestr(info, text)
+            zf.writestr(info, text.replace("@LAB_ARGS@", lab_args))
         for rel in source_files:
             if rel.parts[0] in (".ci",):
                 continue

@@ -19,6 +19,22 @@ def defined_symbols(files):
             if len(parts) >= 2 and parts[1] in "TDBRG" and not parts[0].endswith(":")}
 
 
+def symbols_by_file(files, undefined=False):
+    """{file: its strongly defined (or its undefined) global symbols}, one nm for all files."""
+    files = [str(f) for f in files]
+    found = {f: set() for f in files}
+    if not files:
+        return found
+    argv = ["nm", "-A", "-P", *(["-u"] if undefined else ["-g", "--defined-only"]), *files]
+    run = subprocess.run(argv, capture_output=True, text=True)
+    for line in run.stdout.splitlines():
+        where, _, rest = line.partition(": ")
+        parts = rest.split()
+        if where in found and parts and (undefined or (len(parts) >= 2 and parts[1] in "TDBRG")):
+            found[where].add(parts[0])
+    return found
+
+
 def undefined_symbols(obj):
     run = subprocess.run(["nm", "-u", "-P", str(obj)], capture_output=True, text=True)
     return {line.split()[0] for line in run.stdout.splitlines() if line.strip()}
@@ -57,30 +73,44 @@ def outside_includes(work, flags, name, compile_argv):
     return None
 
 
-def find_cheats(objects, work, build, lab, notes):
+def find_cheats(objects, work, build, lab, notes, others=None):
     """Files to grade as the skeleton's: they include the instructor's files, call the
     reference solution, or redefine the framework's, GoogleTest's or the grader's symbols.
     `objects` are the compiled files (with their .d files beside them), `build` the lab's
-    LabBuild; each finding is added to notes."""
+    LabBuild; each finding is added to notes. `others` maps a file's name to the symbols the
+    reference's other exercise files define: a file that defines another exercise's function
+    (which its grading program takes from the reference) is flagged too."""
     allowed = allowed_folders(work, build.compile_argv)
     flagged = {}
+    defined_in = symbols_by_file(objects)
+    undefined_in = symbols_by_file(objects, undefined=True)
+    inside_cache = {}
+
+    def inside(dep):
+        if dep not in inside_cache:
+            path = pathlib.Path(dep)
+            resolved = (work / path).resolve() if not path.is_absolute() else path.resolve()
+            inside_cache[dep] = any(resolved.is_relative_to(folder) for folder in allowed)
+        return inside_cache[dep]
+
     for obj in objects:
         name = obj.name[:-2]
         deps = obj.with_suffix(".d")
         for dep in parse_depfile(deps.read_text()) if deps.exists() else []:
-            path = pathlib.Path(dep)
-            resolved = (work / path).resolve() if not path.is_absolute() else path.resolve()
-            inside = any(resolved.is_relative_to(folder) for folder in allowed)
-            if not inside:
+            if not inside(dep):
                 flagged.setdefault(name, f"includes {dep}, a file outside the submission and the framework")
                 break
-        used = undefined_symbols(obj) & build.oracle_symbols
+        used = undefined_in[str(obj)] & build.oracle_symbols
         if used:
             flagged.setdefault(name, "calls the reference solution (" + ", ".join(demangle(used)[:3]) + ")")
-        defined = defined_symbols([obj]) & build.protected_symbols
+        defined = defined_in[str(obj)] & build.protected_symbols
         if defined:
             flagged.setdefault(name, "redefines symbols of the framework, GoogleTest or the grader ("
                                + ", ".join(demangle(defined)[:3]) + ")")
+        foreign = defined_in[str(obj)] & (others or {}).get(name, set())
+        if foreign:
+            flagged.setdefault(name, "defines functions of another exercise file ("
+                               + ", ".join(demangle(foreign)[:3]) + "); each exercise is graded in its own file")
     for name, why in flagged.items():
         lost = exercises_in(lab.solution / name)
         what = f"exercise {', '.join(lost)} scores 0" if lost else "it was left out"

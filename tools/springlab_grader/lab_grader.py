@@ -4,6 +4,7 @@ skeleton's, archive the objects with the lab's given objects, link the grading p
 wrote it down, and run every test in the sandbox; then whole submissions and whole classes."""
 import concurrent.futures
 import dataclasses
+import functools
 import hashlib
 import os
 import pathlib
@@ -19,66 +20,150 @@ import time
 from . import integrity
 from .build_cache import Cache
 from .errors import GradeError
-from .gtest_runner import draw_seed, grade_binary
-from .labs import ROOT, discover_labs
+from .gtest_runner import Budget, draw_seed, grade_binary
+from .labs import ROOT, discover_labs, exercises_in
 from .reports import write_submission
-from .results import Graded, LabResult, failed_lab
+from .results import Graded, LabResult, TestResult, failed_lab
 from .sandbox import TIMEOUT, Sandbox, run_sandboxed, tail
-from .submission import SOURCE_SUFFIXES, collect_sources, find_lab_folder, unpack
+from .submission import SOURCE_SUFFIXES, collect_sources, locate_labs, unpack
 
 COMPILE_TIMEOUT = 180.0
+# The time budget of a lab: BUDGET_FLOOR seconds plus BUDGET_FACTOR times the reference's own
+# grading time (the sum of its tests' seconds); a submission's is the sum of its labs'.
+BUDGET_FACTOR = 5.0
+BUDGET_FLOOR = 120.0
 
 
 class LabGrader:
-    def __init__(self, cache, lab, work, sandbox, compile_sandbox, jobs, seed):
+    """One lab of one submission. Points follow the exercise: for each exercise file F, a
+    grading program links the student's F with the reference's objects of every other file
+    (and the given code, tests and oracle), and runs only the tests of F's exercises, so a bug
+    in one exercise costs that exercise's points alone. A file that does not compile, or that
+    the integrity checks flag, is the skeleton's: its exercises score 0, the rest is graded."""
+
+    def __init__(self, cache, lab, work, sandbox, compile_sandbox, jobs, seed, budget=None):
         self.cache, self.lab, self.work, self.jobs, self.seed = cache, lab, work, jobs, seed
         self.sandbox, self.compile_sandbox = sandbox, compile_sandbox
         self.build = cache.lab(lab, sandbox)
+        self.budget = budget
         self.notes = []
+        self.links = 0
+        self.timing = {"compile": 0.0, "link": 0.0, "test": 0.0}
 
     def grade(self, submitted):
         """Compile, check, link and test; a LabResult whatever the student's code does."""
-        lab, notes = self.lab, self.notes
+        lab, notes, build = self.lab, self.notes, self.build
+        started = time.monotonic()
         skeleton = {p.name: p.read_bytes() for p in lab.skeleton.iterdir() if p.suffix in SOURCE_SUFFIXES}
         if not submitted:
-            return failed_lab(lab.manifest, f"no files of {lab.dir} in the submission",
-                              [f"the submission has no folder or files for {lab.dir}: every test scores 0"])
+            return failed_lab(lab.manifest, f"{lab.dir} was not submitted",
+                              [f"{lab.dir}: not submitted (no folder or exercise files of this lab in the "
+                               f"submission): every test of this lab scores 0"])
         files = dict(skeleton)
         files.update(submitted)
         missing = sorted(set(skeleton) - set(submitted))
         if missing:
             notes.append(f"missing from the submission, taken from the released skeleton (their exercises "
                          f"score 0): {', '.join(missing)}")
+        file_exercises = {name: exercises_in(lab.solution / name) for name in skeleton}
+        # Why a file is graded as the skeleton's; the message its tests get.
+        reasons = {name: f"{name} was not submitted: the released skeleton's file, not done" for name in missing}
+        for name in skeleton:
+            if name in submitted and submitted[name] == skeleton[name]:
+                reasons[name] = f"{name} is the released skeleton's file, unchanged: not done yet"
+        changed = {n: d for n, d in files.items() if n not in reasons}
 
-        # Compile; a file that reaches for the instructor's code is graded as the skeleton's.
-        objects, errors = self.compile_all(files)
-        if errors:
-            return failed_lab(lab.manifest, f"{lab.dir} does not compile; see the note above",
-                              notes + [f"{lab.dir} does not compile, so every test of this lab scores 0. "
-                                       f"The compiler's first errors:\n{errors}"])
-        replaced = integrity.find_cheats(objects, self.work, self.build, lab, self.notes)
-        if replaced:
-            for name in replaced:
-                if name in skeleton:
-                    files[name] = skeleton[name]
-                else:
-                    del files[name]
-            objects, errors = self.compile_all(files)
-            if errors:
-                return failed_lab(lab.manifest, "does not compile with the skeleton's files", notes + [errors])
+        mark = time.monotonic()
+        objects, errors = self.compile_all(files, changed)
+        self.timing["compile"] = time.monotonic() - mark
+        for name, error in sorted(errors.items()):
+            lost = ", ".join(file_exercises.get(name, [])) or "none"
+            notes.append(f"{name} does not compile, so it is graded as the released skeleton's {name}: "
+                         f"exercise {lost} scores 0, the other exercises are graded. "
+                         f"The compiler's first errors:\n{error}")
+            reasons[name] = f"{name} does not compile (see the note): graded as the released skeleton's file"
+        solution = self.object_map(build.link.solution_objects)
+        skeleton_objects = self.object_map(build.link.skeleton_objects)
+        per_file = bool(solution) and all(n in solution and n in skeleton_objects for n in skeleton)
+        others = {}
+        if per_file:
+            symbols = {n: reference_symbols(solution[n]) for n in skeleton}
+            others = {n: set().union(*(s for m, s in symbols.items() if m != n)) for n in skeleton}
+        for name in integrity.find_cheats(list(objects.values()), self.work, build, lab, notes, others):
+            objects.pop(name, None)
+            reasons[name] = f"{name} was replaced by the released skeleton's file (see the note)"
 
-        binary, errors = self.link(objects)
-        if errors:
-            return failed_lab(lab.manifest, f"{lab.dir} does not link; see the note above",
-                              notes + [f"{lab.dir} compiles but does not link, so every test of this lab "
-                                       f"scores 0. The linker's first errors:\n{errors}"])
-        started = time.monotonic()
-        results = grade_binary(str(binary), lab.manifest, self.seed, self.sandbox, self.jobs,
-                               present=self.build.tests_present)
-        return LabResult(lab.manifest, results, notes, self.seed, time.monotonic() - started)
+        if not per_file:
+            results = self.grade_whole(objects, skeleton_objects, reasons)
+            if isinstance(results, LabResult):
+                return results
+        else:
+            results = self.grade_per_file(objects, solution, file_exercises, reasons)
+        self.timing["links"] = self.links
+        return LabResult(lab.manifest, results, notes, self.seed, time.monotonic() - started, dict(self.timing))
+
+    @staticmethod
+    def object_map(paths):
+        """{exercise file name: its object} from CMake's object paths (.../spring_force.cpp.o)."""
+        return {pathlib.Path(p).name[:-2]: pathlib.Path(p) for p in paths if p.endswith(".o")}
+
+    def wanted_tests(self):
+        present = self.build.tests_present
+        return [(ex, t) for ex in self.lab.manifest["exercises"] for t in ex["tests"]
+                if t["name"] in present or t["visibility"] == "visible"]
+
+    def grade_per_file(self, objects, solution, file_exercises, reasons):
+        """One program per exercise file the student did: their file, the reference's others."""
+        owner = {ex_id: name for name, ids in file_exercises.items() for ex_id in ids}
+        by_file = {}
+        for ex, t in self.wanted_tests():
+            by_file.setdefault(owner.get(ex["id"]), []).append(t["name"])
+        programs, failed = {}, {}
+        for name, tests in by_file.items():
+            if name is None:  # an exercise no file claims: every student file, the skeleton's for the rest
+                members = [objects.get(n, solution[n]) if n in objects else self.skeleton_object(n) for n in solution]
+                programs["whole lab"] = (members, tests)
+            elif name in reasons:
+                failed.update({test: reasons[name] for test in tests})
+            else:
+                members = [objects[name], *(obj for n, obj in solution.items() if n != name)]
+                programs[name] = (members, tests)
+        binaries = self.link_all({k: m for k, (m, _) in programs.items()})
+        outcome = {}
+        for key, (_, tests) in programs.items():
+            binary, error = binaries[key]
+            if error:
+                self.notes.append(f"{key} compiles but its grading program does not link (it must stand on its "
+                                  f"own beside the reference's other files), so its exercises score 0. "
+                                  f"The linker's first errors:\n{error}")
+                failed.update({test: f"{key} does not link (see the note)" for test in tests})
+                continue
+            mark = time.monotonic()
+            for r in grade_binary(str(binary), self.lab.manifest, self.seed, self.sandbox, self.jobs,
+                                  present=self.build.tests_present, only=set(tests), budget=self.budget):
+                outcome[r.test["name"]] = r
+            self.timing["test"] += time.monotonic() - mark
+        return [outcome.get(t["name"]) or TestResult(ex, t, False, failed.get(t["name"], "not run"), 0.0)
+                for ex, t in self.wanted_tests()]
+
+    def skeleton_object(self, name):
+        return self.object_map(self.build.link.skeleton_objects)[name]
+
+    def grade_whole(self, objects, skeleton_objects, reasons):
+        """A build without per-file reference objects: one program of the student's files."""
+        members = [objects[n] if n in objects else skeleton_objects[n] for n in sorted(set(objects) | set(reasons))
+                   if n in objects or n in skeleton_objects]
+        binary, error = self.link_all({"lab": members})["lab"]
+        if error:
+            return failed_lab(self.lab.manifest, f"{self.lab.dir} does not link; see the note above",
+                              self.notes + [f"{self.lab.dir} compiles but does not link, so every test of this "
+                                            f"lab scores 0. The linker's first errors:\n{error}"])
+        return grade_binary(str(binary), self.lab.manifest, self.seed, self.sandbox, self.jobs,
+                            present=self.build.tests_present, budget=self.budget)
 
     # -- compiling
-    def compile_all(self, files):
+    def compile_all(self, files, changed):
+        """Compile the changed files; ({name: object}, {name: first errors})."""
         src, obj = self.work / "src", self.work / "obj"
         for folder in (src, obj):
             shutil.rmtree(folder, ignore_errors=True)
@@ -91,13 +176,10 @@ class LabGrader:
         if ids:
             os.chown(obj, *ids)
         headers = b"".join(hashlib.sha256(files[n]).digest() for n in sorted(files) if not n.endswith(".cpp"))
-        sources = sorted(n for n in files if n.endswith(".cpp"))
-        with concurrent.futures.ThreadPoolExecutor(max_workers=self.jobs) as pool:
-            outcomes = list(pool.map(lambda n: self.compile_one(n, files[n], headers), sources))
-        errors = [e for _, e in outcomes if e]
-        if errors:
-            return None, "\n".join(errors)
-        return [o for o, _ in outcomes], None
+        sources = sorted(n for n in changed if n.endswith(".cpp"))
+        with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, self.jobs)) as pool:
+            outcomes = dict(zip(sources, pool.map(lambda n: self.compile_one(n, files[n], headers), sources)))
+        return ({n: o for n, (o, e) in outcomes.items() if not e}, {n: e for n, (o, e) in outcomes.items() if e})
 
     def compile_one(self, name, data, headers):
         """Compile src/<name> to an object, or reuse the same compile of an earlier submission."""
@@ -127,13 +209,25 @@ class LabGrader:
         return private / f"{name}.o", None
 
     # -- linking
-    def link(self, objects):
-        bin_dir = self.work / "bin"
+    def link_all(self, programs):
+        """{key: (binary, None) or (None, errors)} for {key: [exercise objects]}, side by side."""
+        mark = time.monotonic()
+        with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, self.jobs)) as pool:
+            done = dict(zip(programs, pool.map(self.link, programs, programs.values())))
+        self.links += len(programs)
+        self.timing["link"] += time.monotonic() - mark
+        return done
+
+    def link(self, key, objects):
+        tag = re.sub(r"[^A-Za-z0-9_]+", "_", key)
+        bin_dir = self.work / "bin" / tag
         shutil.rmtree(bin_dir, ignore_errors=True)
-        bin_dir.mkdir()
+        bin_dir.mkdir(parents=True)
+        os.chmod(bin_dir.parent, 0o711)
         library = bin_dir / f"libstudent_{self.lab.name}.a"
         members = [*map(str, objects), *map(str, self.build.given_objects)]
-        run = subprocess.run(["ar", "rcs", str(library), *members], capture_output=True, text=True)
+        # q, not r: members of the same file name (a given and an exercise file) both stay.
+        run = subprocess.run(["ar", "qcs", str(library), *members], capture_output=True, text=True)
         if run.returncode != 0:
             return None, run.stderr
         binary = bin_dir / f"{self.lab.name}_grading"
@@ -145,6 +239,17 @@ class LabGrader:
         return binary, None
 
 
+@functools.lru_cache(maxsize=256)
+def _symbols(path, stamp):
+    return frozenset(integrity.defined_symbols([path]))
+
+
+def reference_symbols(path):
+    """The strong symbols of a reference exercise object, read once per version of the file."""
+    stat = os.stat(path)
+    return _symbols(str(path), (stat.st_mtime_ns, stat.st_size))
+
+
 def first_errors(output, lines=25):
     """The compiler's first error lines, paths shortened to the file names students know."""
     text = re.sub(r"(^|\s)(?:\S*/)?src/", r"\1", output)
@@ -154,32 +259,44 @@ def first_errors(output, lines=25):
 
 
 # ---- one submission --------------------------------------------------------------------------
-def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandbox, name=None):
+def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandbox, name=None, only=None,
+                     budgets=None):
+    """Grade a submission (a folder or a zip: a labs/ folder, a whole repository, lab folders
+    or the flat files of one lab). `only`: the one lab to grade (--lab), the others are left
+    out of the result; `budgets`: {lab name: seconds of tests it may spend}."""
     submission = pathlib.Path(submission)
     if not submission.exists():
         raise GradeError(f"{submission}: no such file or folder")
+    if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
+        raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
     started = time.monotonic()
     notes = []
     base = pathlib.Path(tempfile.mkdtemp(prefix="springlab-grade-"))
     os.chmod(base, 0o711)  # the sandbox user may enter known paths, never list them
+    budgets = budgets or {}
+    graded_labs = [lab for lab in labs if only is None or only in (lab.name, lab.dir)]
+    limits = [budgets.get(lab.name) for lab in graded_labs]
+    total = Budget(sum(limits) if limits and None not in limits else None, what="submission")
     try:
         root = unpack(submission, base, notes)
+        folders = locate_labs(root, labs, notes, only)
         results = []
         found_any = False
-        for lab in labs:
-            folder = find_lab_folder(root, lab)
+        for lab in graded_labs:
+            folder = folders.get(lab.dir)
             lab_notes = []
             submitted = collect_sources(folder, lab_notes, lab.dir, lab.skeleton) if folder else {}
             found_any |= bool(submitted)
             work = base / lab.dir
             work.mkdir()
             os.chmod(work, 0o711)
-            grader = LabGrader(cache, lab, work, sandbox, compile_sandbox, jobs, seed)
+            grader = LabGrader(cache, lab, work, sandbox, compile_sandbox, jobs, seed,
+                               budget=Budget(budgets.get(lab.name), parent=total))
             grader.notes.extend(lab_notes)
             results.append(grader.grade(submitted))
         if not found_any:
-            notes.append("the submission holds no lab files (" + ", ".join(lab.dir for lab in labs)
-                         + "): nothing to grade, every test scores 0")
+            notes.append("the submission holds no exercise files of " + ", ".join(lab.dir for lab in graded_labs)
+                         + ": nothing to grade, every test scores 0")
         return Graded(name or submission.name, results, notes, time.monotonic() - started)
     finally:
         shutil.rmtree(base, ignore_errors=True)
@@ -194,20 +311,41 @@ class Session:
     sandbox: Sandbox          # the tests'
     compile_sandbox: Sandbox  # the compiler's
     seed: int
+    only: str = None            # --lab: the one lab graded
+    budget_factor: float = BUDGET_FACTOR
+    budget_floor: float = BUDGET_FLOOR
+    budgets: dict = dataclasses.field(default_factory=dict)
 
     def prepare(self):
-        """Find each lab's build (compile flags, link, test list) now, not in a worker."""
+        """Find each lab's build (compile flags, link, test list) and its time budget (a
+        multiple of the reference's own grading time, measured once) now, not in a worker."""
         for lab in self.labs:
+            if self.only is not None and self.only not in (lab.name, lab.dir):
+                continue
             self.cache.lab(lab, self.sandbox)
+            if lab.name not in self.budgets and self.budget_factor > 0:
+                reference = self.cache.reference_seconds(lab, self.sandbox)
+                self.budgets[lab.name] = (None if reference is None
+                                          else self.budget_floor + self.budget_factor * reference)
+
+    def grade(self, path, jobs, name=None):
+        self.prepare()
+        return grade_submission(path, self.cache, self.labs, self.seed, jobs, self.sandbox, self.compile_sandbox,
+                                name=name, only=self.only, budgets=self.budgets)
 
 
-def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, memory_mb=4096):
+def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, memory_mb=4096, only=None,
+                  budget_factor=BUDGET_FACTOR, budget_floor=BUDGET_FLOOR):
     labs = discover_labs()
+    if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
+        raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
     if not (ROOT / "solutions").exists():
         raise GradeError(f"{ROOT}: no solutions/ folder: grading needs the instructor tree, not a student release")
     sandbox = Sandbox(timeout=timeout, memory_mb=memory_mb)
     compile_sandbox = Sandbox(timeout=COMPILE_TIMEOUT, memory_mb=0, file_mb=256)
-    cache = Cache(cache_path, labs, build=build, jobs=jobs)
+    # With --lab, only that lab's grading programs are built (a Gradescope assignment per lab).
+    cache = Cache(cache_path, [lab for lab in labs if only is None or only in (lab.name, lab.dir)] or labs,
+                  build=build, jobs=jobs)
     if compile_sandbox.identity():
         # The compiler runs as the sandbox user only if that user can read the framework's
         # headers (not so in a checkout under /root); else as us, with the include check.
@@ -216,7 +354,9 @@ def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, me
                                                             for d in sorted(folders)) or "true"], compile_sandbox)
         if probe.returncode != 0:
             compile_sandbox.drop_to = None
-    return Session(labs, cache, sandbox, compile_sandbox, draw_seed(seed))
+    if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
+        raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
+    return Session(labs, cache, sandbox, compile_sandbox, draw_seed(seed), only, budget_factor, budget_floor)
 
 
 def grade_class(session, entries, out, jobs, progress=sys.stderr):
@@ -230,8 +370,7 @@ def grade_class(session, entries, out, jobs, progress=sys.stderr):
     def one(entry):
         name, path = entry
         try:
-            graded = grade_submission(path, session.cache, session.labs, session.seed, 1, session.sandbox,
-                                      session.compile_sandbox, name=name)
+            graded = session.grade(path, 1, name=name)
             write_submission(graded, out / name, session.seed)
             line = f"{graded.score:g}/{graded.max_score:g}"
         except GradeError as error:

@@ -6,6 +6,8 @@ import pathlib
 import sys
 import xml.etree.ElementTree as ET
 
+from .results import split_text
+
 
 def print_lab(lab, quiet=False, file=sys.stdout):
     m = lab.manifest
@@ -13,14 +15,16 @@ def print_lab(lab, quiet=False, file=sys.stdout):
         print(f"  note: {note}".replace("\n", "\n        "), file=file)
     if not quiet:
         for ex in m["exercises"]:
-            print(f"  Exercise {ex['id']}: {ex['title']}  {lab.exercise_score(ex):g}/{ex['points']:g}", file=file)
+            print(f"  Exercise {ex['id']}: {ex['title']}  {lab.exercise_score(ex):g}/{ex['points']:g}  "
+                  f"({split_text(lab.split(ex))})", file=file)
             for r in (r for r in lab.results if r.exercise is ex):
                 print(f"    {'PASS' if r.passed else 'FAIL'} {r.score:g}/{r.test['points']:g}  {r.test['name']}"
                       + ("" if r.test["visibility"] == "visible" else f"  ({r.test['visibility']})"), file=file)
                 if r.message and not r.passed:
                     print("           " + r.message.replace("\n", "\n           "), file=file)
     percent = 100.0 * lab.score / lab.max_score if lab.max_score else 0.0
-    print(f"{m['title']}: {lab.score:g} / {lab.max_score:g} points ({percent:.1f} %)", file=file)
+    print(f"{m['title']}: {lab.score:g} / {lab.max_score:g} points ({percent:.1f} %; {split_text(lab.split())})",
+          file=file)
 
 
 def report_markdown(labs, title, seed):
@@ -32,11 +36,13 @@ def report_markdown(labs, title, seed):
         lines += [f"| {lab.manifest['title']} | {lab.score:g} / {lab.max_score:g} |" for lab in labs]
         lines.append("")
     for lab in labs:
-        lines += [f"## {lab.manifest['title']}: {lab.score:g} / {lab.max_score:g} points", ""]
+        lines += [f"## {lab.manifest['title']}: {lab.score:g} / {lab.max_score:g} points", "",
+                  f"Points: {split_text(lab.split())}.", ""]
         for note in lab.notes:
             lines += ["> **Note**", ">", *(f"> {n}" if n else ">" for n in note.splitlines()), ""]
         for ex in lab.manifest["exercises"]:
-            lines += [f"### Exercise {ex['id']}: {ex['title']} ({lab.exercise_score(ex):g} / {ex['points']:g} points)", ""]
+            lines += [f"### Exercise {ex['id']}: {ex['title']} ({lab.exercise_score(ex):g} / {ex['points']:g} points: "
+                      f"{split_text(lab.split(ex))})", ""]
             for r in (r for r in lab.results if r.exercise is ex):
                 hidden = "" if r.test["visibility"] == "visible" else " (hidden test)"
                 lines.append(f"- {'pass' if r.passed else '**FAIL**'} {r.score:g}/{r.test['points']:g} "

@@ -57,23 +57,67 @@ def safe_extract(archive, into, notes):
             target.write_bytes(data[:MAX_FILE_BYTES])
 
 
+def exercise_names(lab):
+    return {p.name for p in lab.skeleton.iterdir() if p.suffix in SOURCE_SUFFIXES}
+
+
 def find_lab_folder(root, lab):
-    """The submission's folder for a lab: a folder named like the lab (01_rope), the shallowest,
-    else the submission's top folder when it holds files of the lab's skeleton."""
-    best = None
+    """The submission's folder for a lab: a folder named like the lab (01_rope) that holds
+    some of its exercise files (so a repository's tests/01_rope is never taken), preferring
+    one inside a labs/ folder, then the one with the most exercise files, then the shallowest;
+    None when there is none (flat files are matched by locate_labs)."""
+    names = exercise_names(lab)
+    best, best_key = None, None
     for dirpath, dirnames, _ in os.walk(root):
         depth = len(pathlib.Path(dirpath).relative_to(root).parts)
-        dirnames[:] = [d for d in dirnames if not d.startswith((".", "__MACOSX")) and depth < 5]
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith((".", "__MACOSX")) and depth < 6)
         if lab.dir in dirnames:
             candidate = pathlib.Path(dirpath) / lab.dir
-            if best is None or len(candidate.parts) < len(best.parts):
-                best = candidate
-    if best is not None:
-        return best
-    skeleton_names = {p.name for p in lab.skeleton.iterdir() if p.suffix in (".cpp",)}
-    if any((root / n).is_file() for n in skeleton_names):
-        return root
-    return None
+            count = sum((candidate / n).is_file() for n in names)
+            if not count:
+                continue
+            key = (pathlib.Path(dirpath).name != "labs", -count, len(candidate.parts))
+            if best_key is None or key < best_key:
+                best, best_key = candidate, key
+    return best
+
+
+def flat_folder(root):
+    """The folder a submission's flat exercise files are in: root, or the single folder a zip
+    wraps them in."""
+    folder = pathlib.Path(root)
+    for _ in range(3):
+        entries = [p for p in folder.iterdir() if not p.name.startswith((".", "__MACOSX"))]
+        if any(p.is_file() and p.suffix in SOURCE_SUFFIXES for p in entries):
+            return folder
+        dirs = [p for p in entries if p.is_dir()]
+        if len(dirs) != 1:
+            return folder
+        folder = dirs[0]
+    return folder
+
+
+def locate_labs(root, labs, notes, only=None):
+    """{lab.dir: its folder in the submission, or None when the lab was not submitted}.
+    Lab folders (labs/01_rope, 01_rope, ...) first; flat exercise files (no lab folder) go to
+    the lab named by `only` (--lab), else to the one lab whose skeleton has the most of those
+    file names (a tie is not guessed: the report asks for --lab)."""
+    wanted = [lab for lab in labs if only is None or lab.name == only or lab.dir == only]
+    found = {lab.dir: find_lab_folder(root, lab) for lab in wanted}
+    if any(found.values()):
+        return found
+    flat = flat_folder(root)
+    present = {p.name for p in flat.iterdir() if p.is_file() and p.suffix in SOURCE_SUFFIXES}
+    counts = {lab.dir: len(present & exercise_names(lab)) for lab in wanted}
+    if only is not None:
+        return {d: (flat if counts[d] else None) for d in found}
+    top = max(counts.values(), default=0)
+    winners = [d for d, c in counts.items() if c == top and c]
+    if len(winners) > 1:
+        notes.append(f"the submission's files ({', '.join(sorted(present))}) could belong to "
+                     f"{' or '.join(winners)}: grade it with --lab NAME")
+        return {d: None for d in found}
+    return {d: (flat if d in winners else None) for d in found}
 
 
 def collect_sources(folder, notes, label, skeleton):
