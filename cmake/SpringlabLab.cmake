@@ -50,13 +50,14 @@ function(springlab_add_lab)
       # flags, and tests/stubs/ swaps one of them into the reference.
       add_library(${target}_objects OBJECT ${exercises})
       target_include_directories(${target}_objects PUBLIC ${given_dir}/include)
-      target_link_libraries(${target}_objects PUBLIC springlab_core PRIVATE springlab_warnings)
-      target_compile_options(${target}_objects PRIVATE -Wno-unused-parameter)  # stubs ignore them
+      # The student's warnings: never an error for the conversion class (SpringlabWarnings).
+      target_link_libraries(${target}_objects PUBLIC springlab_core PRIVATE springlab_student_warnings)
+      springlab_gnu_options(${target}_objects PRIVATE -Wno-unused-parameter)  # stubs ignore them
       add_library(${target} STATIC $<TARGET_OBJECTS:${target}_objects> $<TARGET_OBJECTS:${given}>)
     else()
       add_library(${target} STATIC ${exercises} ${given_sources})
       # A skeleton's stubs do not use their parameters yet.
-      target_compile_options(${target} PRIVATE -Wno-unused-parameter)
+      springlab_gnu_options(${target} PRIVATE -Wno-unused-parameter)
     endif()
     target_include_directories(${target} PUBLIC ${given_dir}/include)
     target_link_libraries(${target} PUBLIC springlab_core PRIVATE springlab_warnings)
