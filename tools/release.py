@@ -2,8 +2,9 @@
 """Write the tree a student receives: the framework (with each lab's given code in
 framework/labs/<name>/, compiled once), labs/ generated afresh from solutions/ (per lab only
 the exercise .cpp stubs, the copy of exercises.hpp and README.md), public tests, handouts,
-scenes, README and the entry script. Never solutions/, hidden tests, the grader's own tests
-and tools, or the course author's notes.
+scenes, the student README and the entry script. Never solutions/, hidden tests, the grader's
+own tests and tools, the course author's notes, or the instructor's README: the release's
+README.md is tools/templates/README.student.md, written for students.
 
     tools/release.py OUT            OUT must not exist, or be an empty folder
     tools/release.py OUT --force    replace OUT
@@ -36,10 +37,14 @@ INSTRUCTOR_ONLY = [
     "tools/springlab_grader/gradescope.py", "tools/springlab_grader/labs.py",
     "tools/springlab_grader/errors.py",
     "handouts/authoring.md",
+    "README.md",                       # the instructor's README: the release gets STUDENT_README
+    "tools/templates", "tools/templates/*",
     ".ci", ".ci/*",
     "labs", "labs/*",                  # written afresh from solutions/ instead, so a file
                                        # left in labs/ by hand never ships
 ]
+# The release's README.md: what a student reads first (labs, commands, points, Eigen, help).
+STUDENT_README = ROOT / "tools" / "templates" / "README.student.md"
 NEVER_DIRS = ["build*", "out", ".git", "__pycache__", ".cache", ".vscode", ".idea"]
 NEVER_FILES = ["*.pyc"]
 
@@ -86,6 +91,10 @@ def release(out, force=False):
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(ROOT / rel, target)
         written += 1
+    if not STUDENT_README.is_file():
+        raise ReleaseError(f"{STUDENT_README.relative_to(ROOT)}: the student README is missing")
+    shutil.copy2(STUDENT_README, out / "README.md")
+    written += 1
     # labs/: generated now from solutions/, so the release can never hold a stale skeleton.
     labs = sorted(p.name for p in (ROOT / "solutions").iterdir() if p.is_dir())
     try:

@@ -4,7 +4,9 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
+#include <system_error>
 
 #include <springlab/recorder.hpp>
 #include <springlab/registry.hpp>
@@ -59,7 +61,13 @@ int runSim(const Registry& registry, const SimOptions& o) {
   sim.setBlowUpCheck(!o.noBlowUpCheck);
   sim.profile.setEnabled(o.profile);
 
-  // Step, saving every saveEvery-th frame (and the first and the last).
+  // Step, saving every saveEvery-th frame (and the first and the last). The output's folder
+  // is made when missing (--out out/rope.csv); a folder that cannot be made is reported by the
+  // recorder as an output that cannot be written.
+  if (const std::filesystem::path folder = std::filesystem::path(o.out).parent_path(); !folder.empty()) {
+    std::error_code ignored;
+    std::filesystem::create_directories(folder, ignored);
+  }
   Recorder recorder(o.out, scene.settings, sim);
   recorder.record(sim);
   std::string status = "ok";
@@ -128,6 +136,7 @@ int main(int argc, char** argv) {
   viewCmd->add_option("--width", view.width, "window width in pixels");
   viewCmd->add_option("--height", view.height, "window height in pixels");
   viewCmd->add_option("--integrator", view.integrator, "integrator name (default: the scene's)");
+  viewCmd->add_option("--dt", view.dt, "step in s (default: the scene's)")->check(CLI::PositiveNumber);
 #endif
 
   CLI11_PARSE(app, argc, argv);

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
+#include <memory>
 
 #include <springlab/symplectic_euler.hpp>
 
@@ -71,6 +73,109 @@ TEST(BlowUpCheck, CanBeTurnedOffToWatchAMethodFail) {
   sim.setBlowUpCheck(false);
   EXPECT_NO_THROW(for (int n = 0; n < 100; ++n) sim.operate(2.5));
   EXPECT_GT(sim.state.pos[0].norm(), 1e3);
+}
+
+// Two masses with a spring list and a force made of named terms, one of which may be planted
+// non-finite: the blow-up check must name the mass and the term, not dt.
+class PlantedForces final : public Simulation {
+ public:
+  enum class Plant { kNone, kOwnForce, kSpringDirection };
+  explicit PlantedForces(Plant p) : Simulation(3), plant(p) {
+    masses = {Mass{1.0, false}, Mass{1.0, false}, Mass{1.0, false}};
+    state.pos = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(p == Plant::kSpringDirection ? 1.0 : 2.0, 0, 0)};
+    state.vel.assign(3, Vec3::Zero());
+    springs = {Spring{0, 1, 10.0, 1.0, 0.0}, Spring{1, 2, 10.0, 1.0, 0.0}};
+    gravitation = Vec3(0, -9.81, 0);
+    markInitialState();
+  }
+  Plant plant;
+  std::string kind() const override { return "planted system"; }
+
+ protected:
+  void accumulateForces(const State& s, std::vector<Vec3>& f) override {
+    // A "spring" term that is not Lab 1's spring force: k times the unit vector between the
+    // ends, 0/0 when they coincide.
+    for (const Spring& sp : springs) {
+      const Vec3 d = s.pos[sp.mass2] - s.pos[sp.mass1];
+      const Vec3 pull = sp.springConstant * 1e-3 * d / d.norm();
+      f[sp.mass1] += pull;
+      f[sp.mass2] -= pull;
+    }
+    for (int i = 0; i < numOfMasses(); ++i) f[i] += masses[i].m * gravitation;
+    // The lab's own term: a normal never zeroed, on mass 1.
+    if (plant == Plant::kOwnForce) f[1] += Vec3(NAN, 0, 0);
+  }
+};
+
+TEST(BlowUpCheck, ANonFiniteForceIsNamedNotBlamedOnDt) {
+  PlantedForces sim(PlantedForces::Plant::kOwnForce);
+  try {
+    sim.operate(0.005);
+    FAIL() << "a NaN force must stop the run";
+  } catch (const BlowUp& e) {
+    const std::string what = e.what();
+    std::cout << what << "\n";
+    EXPECT_NE(what.find("the force on mass 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("before the state did"), std::string::npos) << what;
+    EXPECT_NE(what.find("planted system's own forces"), std::string::npos) << what;
+    EXPECT_NE(what.find("dt is not the cause"), std::string::npos) << what;
+    EXPECT_EQ(what.find("too large"), std::string::npos) << what;
+  }
+  EXPECT_EQ(sim.stats.forceEvaluations, 1) << "the diagnosis must not count as the run's force evaluations";
+}
+
+TEST(BlowUpCheck, ANonFiniteSpringForceNamesTheSpring) {
+  PlantedForces sim(PlantedForces::Plant::kSpringDirection);  // masses 1 and 2 coincide
+  try {
+    sim.operate(0.005);
+    FAIL() << "a NaN force must stop the run";
+  } catch (const BlowUp& e) {
+    const std::string what = e.what();
+    std::cout << what << "\n";
+    EXPECT_NE(what.find("the force on mass 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("from the spring forces"), std::string::npos) << what;
+    EXPECT_NE(what.find("spring 1 (masses 1-2) has both ends at one point"), std::string::npos) << what;
+  }
+  // The diagnosis leaves the model as it was.
+  EXPECT_EQ(sim.springs[0].springConstant, 10.0);
+  EXPECT_EQ(sim.gravitation, Vec3(0, -9.81, 0));
+}
+
+TEST(BlowUpCheck, DampedExplicitEulerLimitIsKdOverK) {
+  // Underdamped stiffest mode: every mode allows dt < kd/k.
+  EXPECT_DOUBLE_EQ(explicitEulerDampedStableDt(0.002, 100.0), 0.002);
+  // Overdamped (zeta = 2): dt < 2 / (w (zeta + sqrt(zeta^2 - 1))).
+  EXPECT_NEAR(explicitEulerDampedStableDt(0.04, 100.0), 2.0 / (100.0 * (2.0 + std::sqrt(3.0))), 1e-15);
+  EXPECT_EQ(explicitEulerDampedStableDt(0.0, 100.0), 0.0);
+}
+
+// Not explicit Euler's update: an integrator under that name that makes energy run away, so
+// the message for explicit_euler on damped springs can be read.
+class RunawayNamedExplicitEuler final : public Integrator {
+ public:
+  std::string name() const override { return "explicit_euler"; }
+  int order() const override { return 1; }
+  double stabilityConstant() const override { return 0.0; }
+  void step(Simulation& sim, double dt) override {
+    for (Vec3& v : sim.state.vel) v = Vec3(1e6, 0, 0);
+    sim.state.time += dt;
+  }
+};
+
+TEST(BlowUpCheck, DampedExplicitEulerGetsItsDampedLimit) {
+  AnchoredOscillators sim(2, 1.0, 1.0);
+  sim.springs.push_back(Spring{0, 1, 400.0, 1.0, 0.8});  // kd/k = 2 ms
+  sim.setIntegrator(std::make_unique<RunawayNamedExplicitEuler>());
+  try {
+    sim.operate(0.005);
+    FAIL() << "runaway energy must stop the run";
+  } catch (const BlowUp& e) {
+    const std::string what = e.what();
+    std::cout << what << "\n";
+    EXPECT_NE(what.find("stable only through damping"), std::string::npos) << what;
+    EXPECT_NE(what.find("kd/k = 0.002 s"), std::string::npos) << what;
+    EXPECT_EQ(what.find("every dt"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -3,7 +3,8 @@
 the lab layout (each labs/<dir>/ holds only the exercise .cpp stubs, the generated copy of
 exercises.hpp and README.md; each lab's given code is in framework/labs/<name>/), builds
 cleanly (warnings are errors) on its own, and its public tests all fail on the skeleton while
-the framework's tests pass.
+the framework's tests pass. Its README.md is the student README (tools/templates/README.student.md),
+not the instructor's, and names every lab's handout and lab folder.
 
     tests/grading/check_release.py --work build/tests/grading/release     (run by ctest)
 """
@@ -59,6 +60,30 @@ def leaks(tree):
     return problems
 
 
+def readme(tree, labs):
+    """The released README is the one written for students."""
+    problems = []
+    released = tree / "README.md"
+    student = ROOT / "tools" / "templates" / "README.student.md"
+    if not released.is_file():
+        return ["README.md: missing from the release"]
+    text = released.read_text()
+    if text != student.read_text():
+        problems.append("README.md: not the student README (tools/templates/README.student.md)")
+    if text == (ROOT / "README.md").read_text():
+        problems.append("README.md: the instructor's README is in the release")
+    for word in ("solutions/", "grade-all", "autograder", "new-exercise", ".ci/"):
+        if word in text:
+            problems.append(f"README.md: mentions the instructor's {word}")
+    for lab in labs:
+        for name in (f"handouts/{lab.dir}.md", f"labs/{lab.dir}/"):
+            if name not in text:
+                problems.append(f"README.md: does not lead to {name}")
+    if (tree / "tools" / "templates").exists():
+        problems.append("tools/templates/: shipped (its README is the release's README.md)")
+    return problems
+
+
 def layout(tree, labs):
     """Each released lab folder holds only what the student writes; the given code is the
     framework's."""
@@ -109,7 +134,7 @@ def main():
     print(run.stdout + run.stderr)
     if run.returncode != 0:
         return 1
-    problems = leaks(tree) + layout(tree, submission.discover_labs())
+    problems = leaks(tree) + layout(tree, submission.discover_labs()) + readme(tree, submission.discover_labs())
 
     # Build it as a student would (no viewer: the same sources build in the instructor tree).
     build = tree / "build"

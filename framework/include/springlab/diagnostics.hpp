@@ -3,8 +3,10 @@
 // the blow-up check that stops a run with a message naming the likely cause.
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "springlab/math.hpp"
+#include "springlab/state.hpp"
 
 namespace springlab {
 
@@ -28,6 +30,16 @@ double springGershgorinBound(const Simulation& sim);
 // 0 when the method has no stable dt (explicit Euler).
 double predictedStableDt(const Integrator& integrator, double maxAngularFrequency);
 
+// The largest dt explicit Euler keeps stable on springs damped along their length with
+// kd = beta k (beta = kd/k, s): a mode of angular frequency w has damping ratio
+// zeta = beta w / 2 and explicit Euler needs |1 + dt lambda| <= 1, so dt < 2 zeta / w = beta
+// while the mode is underdamped (zeta <= 1), and dt < 2 / (w (zeta + sqrt(zeta^2 - 1))) for an
+// overdamped one. 0 without damping (explicit Euler then has no stable dt).
+double explicitEulerDampedStableDt(double beta, double maxAngularFrequency);
+
+// The springs' smallest damping ratio kd/k (s) over springs with k > 0; 0 when one is undamped.
+double springDampingRatio(const Simulation& sim);
+
 // Raised when a run blew up; what() says when, why it is likely, and the safe dt.
 class BlowUp : public std::runtime_error {
  public:
@@ -45,14 +57,27 @@ class BlowUpCheck {
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
   // The user put energy in (dragged, pinned): never count that as a blow-up.
   void admitUserEnergy(const Simulation& sim);
-  // Throws BlowUp. Its message predicts the safe dt from lanczosEstimate at the
-  // scene's initial state (the blown-up state says nothing about the scene's stiffness).
-  void check(Simulation& sim, double dt) const;
+  // Throws BlowUp naming the likely cause. A non-finite state: the forces are evaluated again
+  // at the last finite state the check saw; when one is non-finite there, the message names
+  // the first such mass and the term (springs, gravity, or the lab's own forces) that makes it
+  // non-finite, and does not blame dt. Otherwise (and for runaway energy) it predicts the safe
+  // dt from lanczosEstimate at the scene's initial state (the blown-up state says nothing
+  // about the scene's stiffness); a damped explicit Euler gets its damped limit.
+  // Remembers the state as the last finite one when it passes.
+  void check(Simulation& sim, double dt);
 
   double energyScale() const { return energyScale_; }
 
  private:
+  // The message's "why it blew up" part for a non-finite state: the forces' story when they
+  // went non-finite first, else empty (the step made the state non-finite from finite forces).
+  std::string blameForces(Simulation& sim);
+
   double energyScale_ = 0.0;  // J
+  // The state at the last check that passed (or at arm()): where the forces are evaluated
+  // again when the state turns non-finite.
+  State last_;
+  long lastStep_ = 0;
 };
 
 }  // namespace springlab

@@ -681,6 +681,7 @@ int runViewer(const Registry& registry, const std::string& scenePath, const View
     scene.settings = registry.readSceneSettings(scenePath);
     scene.missingAtLoad = missingFrom(e);
   }
+  if (options.dt > 0.0) scene.settings.dt = options.dt;
   if (!options.integrator.empty()) {
     try {
       auto integrator = registry.makeIntegrator(options.integrator);

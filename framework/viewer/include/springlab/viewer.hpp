@@ -12,6 +12,7 @@ struct ViewerOptions {
   int width = 1280;           // window size in pixels
   int height = 800;
   std::string integrator;     // when set, overrides the scene's integrator
+  double dt = 0.0;            // s; when > 0, overrides the scene's dt (the panel can change it)
   std::string tree = "student";  // "student" or "reference", shown in the HUD
 };
 
