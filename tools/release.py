@@ -30,6 +30,7 @@ INSTRUCTOR_ONLY = [
     "tests/grading", "tests/grading/*",    # the grader's own tests (sabotage, release, ...)
     "tools/submission.py", "tools/release.py", "tools/autograder.py", "tools/new_exercise.py",
     "tools/make_skeleton.py",
+    "tools/seed_sweep.py",             # sweeps the reference's grading program over seeds
     # The grader's instructor side: building, cheat checks, submissions, the bundle. A student's
     # `check` needs only the manifest, sandbox, test runner, results and reports modules.
     "tools/springlab_grader/build_cache.py", "tools/springlab_grader/integrity.py",
