@@ -29,7 +29,7 @@ class LinkFile:
     path: pathlib.Path
     compiler: str
     flags: list            # before the objects
-    test_objects: list     # the public and hidden tests and the grading main
+    test_objects: list     # the public and hidden tests (no main)
     given_objects: list    # the lab's given code, archived with the student's exercise objects
     oracle: str            # the reference "oracle" library; "" when the tree has none
     libraries: list        # after the student's archive, in link order

@@ -4,6 +4,7 @@ mount namespaces; only /usr, a private /tmp and the worker program visible; a cl
 environment; nothing left running afterwards), and the judge, a program without student code
 that replays the worker's call trace and decides. Only the judge's report counts."""
 import dataclasses
+import functools
 import json
 import os
 import resource
@@ -21,9 +22,27 @@ WORKER_ENV = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "TMPDIR": "/tmp", "LANG":
 TRACE_ENDED = "SPRINGLAB_TRACE_ENDED: "
 
 
+@functools.lru_cache(maxsize=1)
 def bubblewrap():
-    """The bwrap program, or None (then workers run with the older process sandbox)."""
-    return shutil.which("bwrap")
+    """The bwrap program if it can make its namespaces here, else None: then workers run with
+    the process sandbox alone (their own user, limits, process group, a clean environment),
+    as in a container that forbids user namespaces. Sandbox.describe() says which."""
+    program = shutil.which("bwrap")
+    if program is None:
+        return None
+    probe = subprocess.run([program, "--unshare-all", "--die-with-parent", "--ro-bind", "/usr", "/usr",
+                            "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64",
+                            "--symlink", "usr/bin", "/bin", "/usr/bin/true"], capture_output=True)
+    return program if probe.returncode == 0 else None
+
+
+def isolation():
+    """One line for reports: how workers are isolated on this machine."""
+    if bubblewrap():
+        return "workers run in bubblewrap (own user, PID, network and mount namespaces)"
+    why = "bwrap is not installed" if shutil.which("bwrap") is None else "bwrap cannot create namespaces here"
+    return (f"workers run as their own user with limits only ({why}; install bubblewrap, or allow user "
+            f"namespaces, for namespaces)")
 
 
 def worker_uid(slot):
@@ -59,7 +78,10 @@ class JudgedRun:
 
 
 def worker_argv(binary, args, trace_fd, env):
-    """bwrap around the worker program: the program is bound read-only at /sandbox/test."""
+    """bwrap around the worker program: the program is bound read-only at /sandbox/test. Without
+    bubblewrap, the program itself (run_judged gives it a clean environment)."""
+    if bubblewrap() is None:
+        return [str(binary), *args]
     argv = [bubblewrap(), "--unshare-all", "--die-with-parent", "--new-session", "--clearenv"]
     for key, value in {**WORKER_ENV, **env, "SPRINGLAB_CALL_TRACE_FD": str(trace_fd)}.items():
         argv += ["--setenv", key, value]
@@ -89,10 +111,14 @@ def run_judged(judge, worker, args, sandbox: Sandbox, env, slot=0):
             stdin=subprocess.DEVNULL, stdout=judge_log, stderr=subprocess.STDOUT, pass_fds=(trace_r, report_w),
             process_group=0, preexec_fn=limited)
         uid = worker_uid(slot) if root else None
+        private = tempfile.mkdtemp(prefix="springlab-worker-")  # the fallback's cwd and HOME
+        if uid is not None:
+            os.chown(private, uid, uid)
+        plain = {**WORKER_ENV, **env, "HOME": private, "TMPDIR": private, "SPRINGLAB_CALL_TRACE_FD": str(trace_w)}
         worker_proc = subprocess.Popen(
-            worker_argv(worker, args, trace_w, env), env={"PATH": "/usr/bin:/bin"}, stdin=subprocess.DEVNULL,
-            stdout=worker_log, stderr=subprocess.STDOUT, pass_fds=(trace_w,), process_group=0, preexec_fn=limited,
-            user=uid, group=uid, extra_groups=[] if uid else None)
+            worker_argv(worker, args, trace_w, env), env={"PATH": "/usr/bin:/bin"} if bubblewrap() else plain,
+            cwd=private, stdin=subprocess.DEVNULL, stdout=worker_log, stderr=subprocess.STDOUT, pass_fds=(trace_w,),
+            process_group=0, preexec_fn=limited, user=uid, group=uid, extra_groups=[] if uid else None)
         for fd in (trace_r, trace_w, report_w):
             os.close(fd)
         deadline = start + sandbox.timeout
@@ -104,6 +130,7 @@ def run_judged(judge, worker, args, sandbox: Sandbox, env, slot=0):
         # bubblewrap's PID namespace ends with its first process: nothing of the worker is left.
         for proc in (judge_proc, worker_proc):
             kill_group(proc)
+        shutil.rmtree(private, ignore_errors=True)
         seconds = time.monotonic() - start
         try:
             parsed = json.loads(report.decode("utf-8", "replace")) if report.strip() else None
