@@ -61,8 +61,10 @@ class LinkFile:
         stem = file[:-len(".cpp")]
         layer = [o for o in self.layer_objects
                  if pathlib.Path(o).name in ("worker_main.cpp.o", f"{stem}.record.cpp.o", f"{stem}.forward.cpp.o")]
-        return [self.compiler, *self.flags, *self.test_objects, *self.worker_objects, *layer, "-o", str(output),
-                str(student_archive), *self.libraries]
+        # gold links these programs about twice as fast as ld.bfd, where it is installed.
+        faster = ["-fuse-ld=gold"] if shutil.which("ld.gold") else []
+        return [self.compiler, *faster, *self.flags, *self.test_objects, *self.worker_objects, *layer, "-o",
+                str(output), str(student_archive), *self.libraries]
 
     def exercise_functions(self):
         """{exercise file: [function names]} from the call layer's functions.json."""

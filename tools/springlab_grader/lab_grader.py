@@ -162,6 +162,8 @@ class LabGrader:
         if bubblewrap() is None:
             self.notes.append(f"sandbox: {isolation()}")
         workers, failed = {}, {}
+        # What each student object defines, read once for all files (nm is slow to start).
+        defined = integrity.symbols_by_file([objects[n] for n in by_file if n in objects])
         for name, tests in by_file.items():
             if name is None:
                 failed.update({test: "no exercise file of the reference holds this exercise" for test in tests})
@@ -170,7 +172,8 @@ class LabGrader:
             elif name not in self.build.link.judges:
                 failed.update({test: f"the grading build has no judge for {name}; rebuild it" for test in tests})
             else:
-                renamed, error = self.rename_exercises(name, objects[name], solution[name], functions.get(name, []))
+                renamed, error = self.rename_exercises(name, objects[name], solution[name], functions.get(name, []),
+                                                       defined.get(str(objects[name]), set()))
                 if error:
                     self.notes.append(error)
                     failed.update({test: f"{name}: see the note" for test in tests})
@@ -202,11 +205,16 @@ class LabGrader:
         return [outcome.get(t["name"]) or TestResult(ex, t, False, failed.get(t["name"], "not run"), 0.0)
                 for ex, t in self.wanted_tests()]
 
-    def rename_exercises(self, name, student, reference, functions):
+    def rename_exercises(self, name, student, reference, functions, defined):
         """The student's object of `name` with its exercise functions renamed
         springlab_student_<function> (the worker's record objects call them so); (object, None)
         or (None, a note) when the file lacks a function as the header declares it."""
         wanted = exercise_symbols(reference, self.lab.name, tuple(functions))
+        missing = [function for symbol, function in wanted.items() if symbol not in defined]
+        if missing:
+            return None, (f"{name} does not define {', '.join(missing)} as the lab's exercises.hpp declares "
+                          f"{'it' if len(missing) == 1 else 'them'} (a changed signature?), so its exercises "
+                          f"score 0")
         out = self.work / "renamed"
         out.mkdir(exist_ok=True)
         mapping = out / f"{name}.map"
@@ -216,12 +224,6 @@ class LabGrader:
                              capture_output=True, text=True)
         if run.returncode != 0:
             return None, f"{name}: its object could not be prepared for grading ({run.stderr.strip()})"
-        defined = integrity.defined_symbols([renamed])
-        missing = [function for function in wanted.values() if f"springlab_student_{function}" not in defined]
-        if missing:
-            return None, (f"{name} does not define {', '.join(missing)} as the lab's exercises.hpp declares "
-                          f"{'it' if len(missing) == 1 else 'them'} (a changed signature?), so its exercises "
-                          f"score 0")
         return renamed, None
 
     def skeleton_object(self, name):
