@@ -6,9 +6,10 @@ below) replaced by something hostile: a crash, a hang, a forged result, a call o
 reference, ... Everything else is honest. The class is graded with `grade-all`, and each
 submission must get exactly the points of its honest parts: test by test, the outcome of the
 "control" submission, which is solutions/ with the target file taken from the skeleton (the
-exercise not done). A few have other expectations (an empty submission scores 0; a zip that tries to escape keeps its honest
-files). Any further lab is graded in every submission too and must score what the
-reference scores.
+exercise not done). A few have other expectations (an empty submission scores 0; a zip that
+tries to escape keeps its honest files). The class is graded together (`grade-all --lab
+rope`, two at a time), so an attack on the grader's caches or on other students' processes
+shows as another student's changed outcome.
 
     tests/grading/sabotage.py --cache build --work build/tests/sabotage      (run by ctest)
 """
@@ -369,7 +370,8 @@ def check(out, expect, labs):
             problems.append(f"{student}: results.json unreadable: {error}")
     if problems:
         return problems
-    declared = [(lab.dir, t["name"]) for lab in labs for ex in lab.manifest["exercises"] for t in ex["tests"]]
+    declared = [(lab.dir, t["name"]) for lab in labs if lab.dir == TARGET_LAB
+                for ex in lab.manifest["exercises"] for t in ex["tests"]]
 
     def outcomes(student):
         tests = results[student]["tests"]
@@ -441,7 +443,8 @@ def main():
     shutil.rmtree(out, ignore_errors=True)
     run = subprocess.run([sys.executable, str(ROOT / "tools" / "submission.py"), "grade-all", str(work / "class"),
                           "--out", str(out), "--cache", args.cache, "--no-build", "--seed", "12345",
-                          "--jobs", str(args.jobs), "--timeout", str(args.timeout)], text=True, capture_output=True)
+                          "--jobs", str(args.jobs), "--timeout", str(args.timeout), "--lab", TARGET_LAB],
+                         text=True, capture_output=True)
     print(run.stdout + run.stderr)
     if run.returncode != 0:
         print(f"grade-all failed with exit code {run.returncode}", file=sys.stderr)
