@@ -307,6 +307,19 @@ class LinkFileFromCMake(Temp):
 
 
 
+class ObjectCacheChecksItsEntries(Temp):
+    def test_a_tampered_entry_is_not_used(self):
+        cache = build_cache.ObjectCache(self.tmp / "cache")
+        (self.tmp / "a.o").write_bytes(b"object")
+        (self.tmp / "a.d").write_text("a.o: a.cpp\n")
+        cache.store("k", self.tmp / "a.o", self.tmp / "a.d")
+        out = self.tmp / "out"
+        out.mkdir()
+        self.assertEqual(cache.fetch("k", out, "a.cpp"), out / "a.cpp.o")
+        (self.tmp / "cache" / "k.o").write_bytes(b"poisoned")
+        self.assertIsNone(cache.fetch("k", out, "a.cpp"))
+        self.assertIsNone(cache.fetch("missing", out, "a.cpp"))
+
 class CallLayerFromTheHeader(Temp):
     """tools/make_call_layer.py: the worker's record and forward files and the judge's replay
     files follow the exercise header, one function per name, each in one exercise file."""

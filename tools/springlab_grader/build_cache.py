@@ -199,19 +199,31 @@ class ObjectCache:
         return hashlib.sha256(json.dumps(flags).encode() + b"\0" + name.encode() + b"\0" + data + headers).hexdigest()
 
     def fetch(self, key, into, name):
-        """Copy a cached compile to into/<name>.o and .d; its object, or None."""
-        cached, deps = self.folder / f"{key}.o", self.folder / f"{key}.d"
-        if cached.exists() and deps.exists():
-            shutil.copyfile(cached, into / f"{name}.o")
-            shutil.copyfile(deps, into / f"{name}.d")
-            return into / f"{name}.o"
-        return None
+        """Copy a cached compile to into/<name>.o and .d; its object, or None. An entry whose
+        bytes no longer match the digest stored with it is not used (it is compiled again)."""
+        cached, deps, digest = (self.folder / f"{key}{suffix}" for suffix in (".o", ".d", ".sha256"))
+        if not (cached.exists() and deps.exists() and digest.exists()):
+            return None
+        shutil.copyfile(cached, into / f"{name}.o")
+        shutil.copyfile(deps, into / f"{name}.d")
+        if entry_digest(into / f"{name}.o", into / f"{name}.d") != digest.read_text().strip():
+            return None
+        return into / f"{name}.o"
 
     def store(self, key, obj, deps):
+        """Keep a compile the grader has copied out of the sandbox's reach, with its digest."""
         for source, target in ((obj, self.folder / f"{key}.o"), (deps, self.folder / f"{key}.d")):
             temporary = target.with_name(f"{target.name}.{os.getpid()}.{threading.get_ident()}")
             shutil.copyfile(source, temporary)
             os.replace(temporary, target)  # whole or absent, for graders running side by side
+        digest = self.folder / f"{key}.sha256"
+        temporary = digest.with_name(f"{digest.name}.{os.getpid()}.{threading.get_ident()}")
+        temporary.write_text(entry_digest(obj, deps) + "\n")
+        os.replace(temporary, digest)
+
+
+def entry_digest(obj, deps):
+    return hashlib.sha256(pathlib.Path(obj).read_bytes() + b"\0" + pathlib.Path(deps).read_bytes()).hexdigest()
 
 
 # ---- the cache build -------------------------------------------------------------------------
