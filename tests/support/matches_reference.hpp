@@ -30,20 +30,13 @@
 
 namespace springlab::testing {
 
-// Random inputs (seed printed by Seeded), a tolerance and a number of trials per test.
+// Random inputs (Seeded: uniform, integer, vec3, vec3s; the seed printed), a tolerance and a
+// number of trials per test.
 template <int Trials>
 class MatchesReferenceFixture : public Seeded {
  protected:
   static constexpr double kTolerance = 1e-9;
   static constexpr int kTrials = Trials;
-
-  // n random vectors with coordinates in [lo, hi).
-  std::vector<Vec3> vec3s(int n, double lo, double hi) {
-    std::vector<Vec3> out;
-    out.reserve(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) out.push_back(vec3(lo, hi));
-    return out;
-  }
 };
 
 // Relative distance of two numbers, safe near zero (an absolute error below 1).
