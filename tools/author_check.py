@@ -138,7 +138,7 @@ def todo_problems():
 # ---- fixtures: one fixture class per test suite -----------------------------------------------
 TEST_F = re.compile(r"^\s*TEST_F\(\s*(\w+)\s*,", re.M)
 TEST = re.compile(r"^\s*TEST\(\s*(\w+)\s*,", re.M)
-CLASS = re.compile(r"^\s*(?:class|struct)\s+(\w+)\b[^;]*$", re.M)
+CLASS = re.compile(r"^\s*(?:class|struct)\s+(\w+)\s*(?:final\s*)?[:{]", re.M)
 ALIAS = re.compile(r"^\s*using\s+(\w+)\s*=\s*([^;]+);", re.M)
 
 
