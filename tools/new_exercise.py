@@ -128,7 +128,8 @@ def lab_types(lab):
     """Types the lab's headers declare (they live in the oracle's renamed namespace too)."""
     folder = ROOT / "framework" / "labs" / lab / "include" / "springlab" / lab
     text = "".join(p.read_text() for p in folder.glob("*.hpp"))
-    return set(name for pair in re.findall(r"^\s*(?:struct|class|enum class|enum)\s+(\w+)|^\s*using\s+(\w+)\s*=", text, re.M) for name in pair if name)
+    declared = re.findall(r"^\s*(?:struct|class|enum class|enum)\s+(\w+)|^\s*using\s+(\w+)\s*=", text, re.M)
+    return {name for pair in declared for name in pair if name}
 
 
 def reference_type(type_text, lab):
