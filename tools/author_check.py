@@ -99,18 +99,25 @@ def handout_problems(lab):
         manifest = load_manifest(manifest_path)
     except ManifestError as error:
         return [str(error)]
-    return handout_check.check_handout(manifest, rel(ROOT / manifest["handout"]), rel(manifest_path))
+    return handout_check.check_handout(manifest, ROOT / manifest["handout"], rel(manifest_path),
+                                       shown=rel(ROOT / manifest["handout"]))
 
 
 # ---- todo: placeholders left by new_exercise.py -----------------------------------------------
 def tree_files():
+    """git's list when this tree is a checkout of its own, else a walk (a copy of the tree,
+    even one inside another checkout's ignored build folder)."""
     try:
-        listed = subprocess.run(["git", "-C", str(ROOT), "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
-                                capture_output=True, check=True).stdout.decode().split("\0")
-        return [ROOT / p for p in listed if p]
+        top = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--show-toplevel"], capture_output=True,
+                             check=True).stdout.decode().strip()
+        if pathlib.Path(top).resolve() == ROOT:
+            listed = subprocess.run(["git", "-C", str(ROOT), "ls-files", "-z", "--cached", "--others",
+                                     "--exclude-standard"], capture_output=True, check=True).stdout.decode().split("\0")
+            return [ROOT / p for p in listed if p]
     except (OSError, subprocess.CalledProcessError):
-        return [p for p in ROOT.rglob("*") if not (set(p.relative_to(ROOT).parts) & SKIP_DIRS)
-                and not p.relative_to(ROOT).parts[0].startswith("build")]
+        pass
+    return [p for p in ROOT.rglob("*") if not (set(p.relative_to(ROOT).parts) & SKIP_DIRS)
+            and not p.relative_to(ROOT).parts[0].startswith("build")]
 
 
 def todo_problems():

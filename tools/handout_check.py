@@ -102,15 +102,16 @@ def sentence_exercise(text, offset):
     return named[-1] if named else None
 
 
-def check_handout(manifest, handout_path, manifest_path=None):
-    """Every place the handout states points or counts that disagrees with the manifest."""
-    path = pathlib.Path(handout_path)
+def check_handout(manifest, handout_path, manifest_path=None, shown=None):
+    """Every place the handout states points or counts that disagrees with the manifest
+    (`shown`: the handout's name in the messages, default its path)."""
+    try:
+        text = pathlib.Path(handout_path).read_text()
+    except OSError as error:
+        return [f"{shown or handout_path}: cannot read: {error.strerror}"]
+    path = shown or pathlib.Path(handout_path)
     mpath = manifest_path or manifest.get("handout", "the manifest").replace("handouts/", "tests/").replace(
         ".md", "/exercises.json")
-    try:
-        text = path.read_text()
-    except OSError as error:
-        return [f"{path}: cannot read: {error.strerror}"]
     lines = text.splitlines()
     problems = []
 

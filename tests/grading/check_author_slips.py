@@ -39,6 +39,9 @@ def main():
     for rel in release.source_files():
         (tree / rel).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(ROOT / rel, tree / rel)
+    # A repository of its own: release.py and author_check.py list the tree's files with git,
+    # and the work folder may lie inside this checkout's ignored build folder.
+    subprocess.run(["git", "init", "-q", str(tree)], check=True)
     problems = []
 
     def run(*argv):
