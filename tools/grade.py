@@ -11,7 +11,8 @@ passed on a private channel, with the secret nonce this run handed it, and the p
     tools/grade.py --binary build/tests/rope_grading_student --manifest tests/01_rope/exercises.json
     tools/grade.py ... --expect-percent 100        exit 1 unless the score is exactly 100 %
     tools/grade.py ... --out DIR                   also write report.md, results.json, junit.xml
-    tools/grade.py --manifest M --check-handout H  check the handout's exercise headings and points
+    tools/grade.py --manifest M --check-handout H  check every points statement of the handout
+                                                   (tools/handout_check.py)
 
 The grader itself is the package tools/springlab_grader/; this is its command line (and
 tools/new_exercise.py reads manifests through it: load_manifest, ManifestError).
@@ -26,7 +27,7 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.gtest_runner import check_binary_against_manifest, draw_seed, grade_binary  # noqa: E402
-from springlab_grader.manifest import ManifestError, check_handout, load_manifest  # noqa: E402
+from springlab_grader.manifest import ManifestError, load_manifest  # noqa: E402
 from springlab_grader.reports import print_lab, write_outputs  # noqa: E402
 from springlab_grader.results import LabResult  # noqa: E402
 from springlab_grader.sandbox import TIMEOUT, Sandbox  # noqa: E402
@@ -52,7 +53,10 @@ def main():
         print(error, file=sys.stderr)
         return 2
     if args.check_handout:
-        problems = check_handout(manifest, args.check_handout)
+        # Headings, the grading table and its total, "worth N points", "in N exercises": each
+        # disagreement as FILE:LINE, what the handout says and what the manifest says.
+        from handout_check import check_handout
+        problems = check_handout(manifest, args.check_handout, args.manifest)
         for p in problems:
             print(p, file=sys.stderr)
         print("handout agrees with the manifest" if not problems else f"{len(problems)} problem(s)")

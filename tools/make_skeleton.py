@@ -162,9 +162,11 @@ def generate(lab):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--check", action="store_true", help="only check that labs/ is up to date")
-    parser.add_argument("labs", nargs="*", help="labs to process (default: every folder of solutions/)")
+    parser.add_argument("labs", nargs="*", help="labs to process, by folder (01_rope) or name (rope); default: all")
     args = parser.parse_args()
-    labs = args.labs or sorted(p.name for p in (ROOT / "solutions").iterdir() if p.is_dir())
+    folders = sorted(p.name for p in (ROOT / "solutions").iterdir() if p.is_dir())
+    # A lab by its folder (01_rope) or its name (rope).
+    labs = [next((f for f in folders if lab in (f, lab_name(f))), lab) for lab in args.labs] or folders
     stale = []
     try:
         for lab in labs:

@@ -29,6 +29,7 @@ INSTRUCTOR_ONLY = [
     "tests/*/hidden", "tests/*/hidden/*",  # hidden grading tests
     "tests/grading", "tests/grading/*",    # the grader's own tests (sabotage, release, ...)
     "tools/submission.py", "tools/release.py", "tools/autograder.py", "tools/new_exercise.py",
+    "tools/author_check.py",           # the course author's invariants (needs solutions/)
     "tools/make_skeleton.py",
     "tools/seed_sweep.py",             # sweeps the reference's grading program over seeds
     # The grader's instructor side: building, cheat checks, submissions, the bundle. A student's
@@ -76,6 +77,12 @@ def excluded(rel):
 
 
 def release(out, force=False):
+    # A slip of the course author never reaches students: a `TODO(author)` placeholder, a
+    # handout that disagrees with its manifest, a stale labs/, two fixtures for one suite.
+    import author_check
+    slips = author_check.problems()
+    if slips:
+        raise ReleaseError("this tree is not ready for students (tools/author_check.py):\n  " + "\n  ".join(slips))
     out = pathlib.Path(out).resolve()
     inside = out.relative_to(ROOT).parts if out.is_relative_to(ROOT) else None
     if inside is not None and (not inside or not (inside[0] == "out" or inside[0].startswith("build"))):

@@ -4,13 +4,15 @@ where the lab layout wants it (the declaration after the last exercise of the fr
 framework/labs/<name>/include/springlab/<name>/exercises.hpp, the reference in
 solutions/<dir>/, tests in tests/<dir>/), the manifest and the
 handout agree, labs/ is fresh (its copy of exercises.hpp declares the new function), the
-skeleton's stub names the exercise, every new file compiles (-fsyntax-only, warnings as errors)
+skeleton's stub names the exercise, --signature and --points reach every piece, the
+placeholders fail tools/author_check.py at their lines until written, every new file compiles (-fsyntax-only, warnings as errors)
 with only the framework's headers on the include path, as CMake builds them, and bad input
 gives a clear error.
 
     tests/grading/check_new_exercise.py --work build/tests/grading/new_exercise
 """
 import argparse
+import json
 import pathlib
 import re
 import shutil
@@ -55,6 +57,28 @@ def scaffold_and_compile(tree, lab, run):
         odd = [p.name for p in folder.iterdir() if p.suffix not in allowed and p.name not in allowed]
         if odd:
             problems.append(f"{folder.relative_to(tree)}: holds {', '.join(sorted(odd))} besides exercise files")
+    # --signature and --points: the declaration, reference, stub and tests of a second exercise
+    # agree on a signature of the author's; the manifest has the points; the handout agrees.
+    made = run(tree / "tools/new_exercise.py", lab.name, "test_energy", "--points", "4", "--signature",
+               "double testEnergy(const Vec3& x, double k, const std::vector<Vec3>& points)")
+    if made.returncode != 0:
+        return problems + [f"new-exercise {lab.name} test_energy --signature failed: {made.stderr}"]
+    manifest = json.loads((tree / "tests" / lab.dir / "exercises.json").read_text())
+    energy = manifest["exercises"][-1]
+    if [t["points"] for t in energy["tests"]] != [2, 2] or energy["tests"][1]["name"] != "MatchesReference.TestEnergy":
+        problems.append(f"--points 4: the manifest's tests are {energy['tests']}")
+    if "double testEnergy(const Vec3& x, double k, const std::vector<Vec3>& points);" not in headers["exercises"].read_text():
+        problems.append("--signature: the framework header does not declare testEnergy as given")
+    for check in checks:
+        result = run(*check)
+        if result.returncode != 0:
+            problems.append(f"after --signature: {' '.join(map(str, check))}: {result.stdout}{result.stderr}")
+    # Until the author writes them, the placeholders fail the author check, each at its line.
+    result = run(tree / "tools/author_check.py", lab.name)
+    for path in (f"solutions/{lab.dir}/test_energy.cpp", f"tests/{lab.dir}/public/test_energy_test.cpp",
+                 f"framework/labs/{lab.name}/include/springlab/{lab.name}/exercises.hpp", f"handouts/{lab.dir}.md"):
+        if result.returncode != 1 or not re.search(rf"^{re.escape(path)}:\d+: placeholder left", result.stderr, re.M):
+            problems.append(f"author_check does not report the placeholder in {path}: {result.stderr}")
     # The oracle header as tests/CMakeLists.txt generates it: both framework headers of the
     # lab in one, the lab's namespace renamed.
     oracle = tree / "oracle" / lab.name
@@ -71,7 +95,9 @@ def scaffold_and_compile(tree, lab, run):
              f"-I{tree / 'framework/include'}", f"-I{given}", "-isystem", "/usr/include/eigen3",
              f"-I{tree / 'tests/support'}", f"-I{oracle}"]
     for source in (f"solutions/{lab.dir}/test_drag.cpp", f"labs/{lab.dir}/test_drag.cpp",
-                   f"tests/{lab.dir}/public/test_drag_test.cpp", f"tests/{lab.dir}/hidden/test_drag_test.cpp"):
+                   f"tests/{lab.dir}/public/test_drag_test.cpp", f"tests/{lab.dir}/hidden/test_drag_test.cpp",
+                   f"solutions/{lab.dir}/test_energy.cpp", f"labs/{lab.dir}/test_energy.cpp",
+                   f"tests/{lab.dir}/public/test_energy_test.cpp", f"tests/{lab.dir}/hidden/test_energy_test.cpp"):
         result = subprocess.run(["c++", *flags, str(tree / source)], capture_output=True, text=True)
         if result.returncode != 0:
             problems.append(f"{source} does not compile:\n{result.stderr[-3000:]}")

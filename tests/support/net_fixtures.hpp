@@ -9,6 +9,8 @@
 
 #include <springlab/net/net.hpp>
 
+#include "matches_reference.hpp"  // MatchesReference below
+
 namespace springlab::testing {
 
 // A horizontal w x h cloth in the plane y = 0 (u = x, v = z): no gravity, wind, air,
@@ -78,3 +80,47 @@ class ForwardEuler final : public Integrator {
 };
 
 }  // namespace springlab::testing
+
+// ---- the fixture of the hidden suite MatchesReference (every tests/02_net/hidden/*.cpp) -----
+// One class for the whole suite (see matches_reference.hpp): a new hidden file uses it by name.
+namespace springlab::net {
+
+class MatchesReference : public springlab::testing::MatchesReferenceFixture<300> {
+ protected:
+  // Random net parameters, the same for the student's and the reference's types.
+  NetParameters randomNet() {
+    NetParameters p = springlab::testing::quietNet(integer(2, 9), uniform(0.3, 2), uniform(0.3, 2));
+    p.origin = vec3(-1, 1);
+    const Vec3 u = vec3(-1, 1).normalized();
+    p.uAxis = u;
+    p.vAxis = u.cross(vec3(-1, 1)).normalized();
+    if (integer(0, 1)) {
+      p.massModel = MassModel::Density;
+      p.arealDensity = uniform(0.1, 2);
+    } else {
+      p.particleMass = uniform(0.01, 1);
+    }
+    for (int k = 0; k < 3; ++k) p.springs[k] = {integer(0, 3) > 0, uniform(1, 500), uniform(0, 1)};
+    const Pin all[] = {Pin::Corner00, Pin::Corner10, Pin::Corner01, Pin::Corner11,
+                       Pin::EdgeU0,   Pin::EdgeU1,   Pin::EdgeV0,   Pin::EdgeV1};
+    for (Pin pin : all) {
+      if (integer(0, 3) == 0) p.pins.push_back(pin);
+    }
+    return p;
+  }
+  // A random net in motion, with gravity and air friction, for the implicit steps.
+  std::unique_ptr<Net> movingNet(NetParameters p) {
+    p.gravitation = Vec3(0, -9.81, 0);
+    p.airFriction = uniform(0, 1);
+    auto net = std::make_unique<Net>(3, p);
+    for (int i = 0; i < net->numOfMasses(); ++i) {
+      if (!net->masses[i].pinned) {
+        net->state.pos[i] += vec3(-0.2, 0.2) / p.resolution;
+        net->state.vel[i] = vec3(-1, 1);
+      }
+    }
+    return net;
+  }
+};
+
+}  // namespace springlab::net

@@ -6,6 +6,8 @@
 
 #include <springlab/rope/rope.hpp>
 
+#include "matches_reference.hpp"  // MatchesReference below
+
 namespace springlab::testing {
 
 // A rope with no gravity, air or ground unless the test asks for them.
@@ -34,3 +36,11 @@ inline Registry ropeRegistry() {
 }
 
 }  // namespace springlab::testing
+
+// ---- the fixture of the hidden suite MatchesReference (every tests/01_rope/hidden/*.cpp) -----
+// One class for the whole suite (see matches_reference.hpp): a new hidden file uses it by name.
+namespace springlab::rope {
+
+class MatchesReference : public springlab::testing::MatchesReferenceFixture<500> {};
+
+}  // namespace springlab::rope

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <springlab/math.hpp>
 
@@ -35,6 +36,12 @@ class Seeded : public ::testing::Test {
     return std::uniform_int_distribution<int>(lo, hi)(rng_);
   }
   Vec3 vec3(double lo, double hi) { return {uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)}; }
+  // n random vectors with coordinates in [lo, hi).
+  std::vector<Vec3> vec3s(int n, double lo, double hi) {
+    std::vector<Vec3> out;
+    for (int i = 0; i < n; ++i) out.push_back(vec3(lo, hi));
+    return out;
+  }
   std::string seedText() const { return "(seed " + std::to_string(seed_) + ")"; }
 
  private:

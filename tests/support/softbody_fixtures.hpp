@@ -8,6 +8,8 @@
 
 #include <springlab/softbody/softbody.hpp>
 
+#include "matches_reference.hpp"  // MatchesReference below
+
 namespace springlab::testing {
 
 // A body of the given rest shape with no gravity, air, wind, gas or obstacles unless the
@@ -61,3 +63,31 @@ inline Registry softbodyRegistry() {
 }
 
 }  // namespace springlab::testing
+
+// ---- the fixture of the hidden suite MatchesReference (every tests/03_softbody/hidden/*.cpp) -----
+// One class for the whole suite (see matches_reference.hpp): a new hidden file uses it by name.
+namespace springlab::softbody {
+
+class MatchesReference : public springlab::testing::MatchesReferenceFixture<500> {
+ protected:
+  std::mt19937_64 rng() { return std::mt19937_64(static_cast<unsigned>(integer(0, 1 << 30))); }
+
+  // A random closed body: a lumpy icosphere (3D) or a lumpy ring (2D) somewhere in space.
+  SurfaceMesh randomBody(bool planar) {
+    if (planar) {
+      SurfaceMesh ring = ringMesh(integer(3, 60), uniform(0.2, 3.0));
+      const Vec3 c(uniform(-3, 3), uniform(-3, 3), 0.0);
+      for (Vec3& v : ring.vertices) v = c + v * uniform(0.7, 1.3);
+      return ring;
+    }
+    auto r = rng();
+    return springlab::testing::lumpySphere(integer(0, 2), uniform(0.2, 2.0), 0.3, vec3(-3, 3), r);
+  }
+  std::vector<Vec3> randomVectors(size_t n, double size) {
+    std::vector<Vec3> v(n);
+    for (Vec3& x : v) x = vec3(-size, size);
+    return v;
+  }
+};
+
+}  // namespace springlab::softbody

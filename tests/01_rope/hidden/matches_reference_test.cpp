@@ -14,12 +14,6 @@ namespace {
 namespace ref = springlab::rope_reference;
 using springlab::testing::relativeError;
 
-class MatchesReference : public springlab::testing::Seeded {
- protected:
-  static constexpr double kTolerance = 1e-9;
-  static constexpr int kTrials = 500;
-};
-
 std::string show(const Vec3& v) {
   std::ostringstream os;
   os << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";

@@ -16,36 +16,6 @@ namespace {
 namespace ref = springlab::net_reference;
 using springlab::testing::relativeError;
 
-class MatchesReference : public springlab::testing::Seeded {
- protected:
-  static constexpr double kTolerance = 1e-9;
-  static constexpr int kTrials = 300;
-
-  // Random net parameters, the same for the student's and the reference's types.
-  NetParameters randomNet() {
-    NetParameters p = springlab::testing::quietNet(integer(2, 9), uniform(0.3, 2), uniform(0.3, 2));
-    p.origin = vec3(-1, 1);
-    const Vec3 u = vec3(-1, 1).normalized();
-    p.uAxis = u;
-    p.vAxis = u.cross(vec3(-1, 1)).normalized();
-    if (integer(0, 1)) {
-      p.massModel = MassModel::Density;
-      p.arealDensity = uniform(0.1, 2);
-    } else {
-      p.particleMass = uniform(0.01, 1);
-    }
-    for (int k = 0; k < 3; ++k) p.springs[k] = {integer(0, 3) > 0, uniform(1, 500), uniform(0, 1)};
-    const Pin all[] = {Pin::Corner00, Pin::Corner10, Pin::Corner01, Pin::Corner11,
-                       Pin::EdgeU0,   Pin::EdgeU1,   Pin::EdgeV0,   Pin::EdgeV1};
-    for (Pin pin : all) {
-      if (integer(0, 3) == 0) p.pins.push_back(pin);
-    }
-    return p;
-  }
-  // A random net in motion, with gravity and air friction, for the implicit steps.
-  std::unique_ptr<Net> movingNet(NetParameters p);
-};
-
 ref::NetParameters toReference(const NetParameters& p) {
   ref::NetParameters r;
   r.width = p.width;
@@ -238,19 +208,6 @@ TEST_F(MatchesReference, SpringJacobian) {
     ASSERT_LT((a.dv - b.dv).norm() / std::max(1.0, b.dv.norm()), kTolerance)
         << "dF1/dv1 is wrong for x1 = " << show(x1) << ", x2 = " << show(x2) << ", kd = " << kd << " " << seedText();
   }
-}
-
-std::unique_ptr<Net> MatchesReference::movingNet(NetParameters p) {
-  p.gravitation = Vec3(0, -9.81, 0);
-  p.airFriction = uniform(0, 1);
-  auto net = std::make_unique<Net>(3, p);
-  for (int i = 0; i < net->numOfMasses(); ++i) {
-    if (!net->masses[i].pinned) {
-      net->state.pos[i] += vec3(-0.2, 0.2) / p.resolution;
-      net->state.vel[i] = vec3(-1, 1);
-    }
-  }
-  return net;
 }
 
 TEST_F(MatchesReference, ImplicitEulerSystem) {

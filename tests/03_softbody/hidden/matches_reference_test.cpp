@@ -17,31 +17,6 @@ namespace {
 namespace ref = springlab::softbody_reference;
 using springlab::testing::relativeError;
 
-class MatchesReference : public springlab::testing::Seeded {
- protected:
-  static constexpr double kTolerance = 1e-9;
-  static constexpr int kTrials = 500;
-
-  std::mt19937_64 rng() { return std::mt19937_64(static_cast<unsigned>(integer(0, 1 << 30))); }
-
-  // A random closed body: a lumpy icosphere (3D) or a lumpy ring (2D) somewhere in space.
-  SurfaceMesh randomBody(bool planar) {
-    if (planar) {
-      SurfaceMesh ring = ringMesh(integer(3, 60), uniform(0.2, 3.0));
-      const Vec3 c(uniform(-3, 3), uniform(-3, 3), 0.0);
-      for (Vec3& v : ring.vertices) v = c + v * uniform(0.7, 1.3);
-      return ring;
-    }
-    auto r = rng();
-    return springlab::testing::lumpySphere(integer(0, 2), uniform(0.2, 2.0), 0.3, vec3(-3, 3), r);
-  }
-  std::vector<Vec3> randomVectors(size_t n, double size) {
-    std::vector<Vec3> v(n);
-    for (Vec3& x : v) x = vec3(-size, size);
-    return v;
-  }
-};
-
 std::string show(const Vec3& v) {
   std::ostringstream os;
   os << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
