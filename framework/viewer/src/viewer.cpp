@@ -370,6 +370,14 @@ int Viewer::run() {
     if (last) break;
   }
   if (options_.frames > 0) {
+    // What the last frame's panel showed of its labels (the viewer tests read this line).
+    if (control_.cutLabels.empty()) {
+      std::cout << "viewer: the panel's labels fit" << std::endl;
+    } else {
+      std::cout << "viewer: the panel cuts labels:";
+      for (const std::string& label : control_.cutLabels) std::cout << " \"" << label << "\"";
+      std::cout << std::endl;
+    }
     const viewer::FrameRate r = total_.frames > 0 ? total_.rate() : recent_.rate();
     std::cout << "viewer: " << std::fixed << std::setprecision(1) << r.fps << " frames/s, physics "
               << r.physicsMs << " ms + drawing " << r.drawMs << " ms a frame" << std::endl;

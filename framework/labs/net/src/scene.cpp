@@ -107,6 +107,8 @@ NetParameters readNetParameters(SceneReader& r, const SceneSettings& settings) {
     plane.rejectUnknownKeys();
     p.planes.push_back(collider);
   }
+  // Optional: how far out of their surface the colliders hold the masses (m).
+  if (c.has("contact_offset")) p.contactOffset = c.nonNegative("contact_offset");
   c.rejectUnknownKeys();
 
   // Corrections after each step.
