@@ -196,7 +196,14 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   if (why.empty()) {
     const Energies e = sim.energies();
     const double grown = e.kinetic + e.elastic + e.other;
-    if (!(grown <= kRunawayFactor * energyScale_)) {
+    if (!std::isfinite(grown)) {
+      // A non-finite energy of a finite state is a non-finite value, not a growth: the forces'
+      // story below, not dt's.
+      std::ostringstream os;
+      os << "kinetic + elastic + other potential energy is " << grown << " J (kinetic " << e.kinetic << ", elastic "
+         << e.elastic << ", other " << e.other << ")";
+      why = os.str();
+    } else if (!(grown <= kRunawayFactor * energyScale_)) {
       std::ostringstream os;
       os << "kinetic + elastic + other potential energy reached " << grown << " J, over " << kRunawayFactor
          << " times the scene's energy scale of " << energyScale_ << " J";
