@@ -133,10 +133,11 @@ Bounds RopeSimulation::reach() const {
   for (const Spring& s : springs) length += s.springLength;
   const double L = std::max(length, 0.1);
   const Vec3& c = ropeConnectionPos;
-  // The masses where they start, and where the rope swings: the part that hangs free (down
-  // to the ground, or all of it) sweeps a circle of its length around the connection point,
-  // and the rope hangs a little longer than its rest length.
-  const double hanging = std::clamp(c.y() - ground.height, 0.0, L);
+  // The masses where they start, and where the rope swings: a rope that hangs free (the
+  // ground further below than its length) sweeps a circle of its length around the
+  // connection point; one the ground catches lies down on the side it fell to. It hangs a
+  // little longer than its rest length.
+  const double hanging = c.y() - ground.height > L ? L : 0.0;
   Bounds b = Simulation::reach();
   b.include(c);
   b.lo = b.lo.cwiseMin(Vec3(c.x() - hanging, std::max(ground.height, c.y() - 1.2 * L), c.z() - 0.25 * hanging));

@@ -69,8 +69,9 @@ void SoftBody::accumulateForces(const State& s, std::vector<Vec3>& f) {
     for (int i = 0; i < numOfMasses(); ++i) f[i] += masses[i].m * gravitation - p_.airFriction * s.vel[i];
   }
 
-  // The gas pushes every face outward (exercises 3.3 to 3.5).
-  if (p_.gas > 0.0 && forceTermOn(kPressure)) addPressureForces(s.pos, triangles, p_.mesh.segments, pressure(s), f);
+  // The gas pushes every face outward (exercises 3.3 to 3.5); a non-finite amount of gas is
+  // not skipped, so the blow-up check can name it.
+  if (p_.gas != 0.0 && forceTermOn(kPressure)) addPressureForces(s.pos, triangles, p_.mesh.segments, pressure(s), f);
 
   // Wind on the faces (exercise 3.9).
   if (p_.windDrag > 0.0 && forceTermOn(kWind)) {
