@@ -42,7 +42,7 @@ double SoftBody::volume(const State& s) const {
 double SoftBody::gas(double time) const { return inflatedGas(p_.gas, time, p_.inflationTime); }
 double SoftBody::gas() const { return gas(state.time); }
 
-double SoftBody::pressure(const State& s) const { return p_.gas > 0.0 ? gasPressure(gas(s.time), volume(s)) : 0.0; }
+double SoftBody::pressure(const State& s) const { return p_.gas != 0.0 ? gasPressure(gas(s.time), volume(s)) : 0.0; }
 
 Penetration SoftBody::penetration(const Vec3& x, const Obstacle& o) const {
   switch (o.type) {
