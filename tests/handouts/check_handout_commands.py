@@ -10,8 +10,9 @@ display (`run` then renders headless under Xvfb). In a tree with solutions/ (the
 whose labs/ is the untouched skeleton) each runs with `--reference`, so it runs a finished lab;
 in a student tree it runs as written, and exit 3 naming a missing exercise counts as run.
 
-A command passes when it exits 0 (or 3 as above), within its time cap, and a file it names
-with --out exists afterwards. Commands too costly for a test run, and spans that only name a
+A command passes when it exits 0 (or 3 as above, or the exit EXPECTED_EXIT gives an example that
+shows a failure on purpose), within its time cap, and a file it names with --out exists after a
+clean exit. Commands too costly for a test run, and spans that only name a
 command or hold a placeholder, are SKIPPED with their reason (printed; listed in SKIP below):
 never silently. --list prints what would run and what is skipped, and runs nothing.
 """
@@ -40,6 +41,11 @@ SKIP = [
      "runs advise on a 20-mass rope"),
     (r"^\./springlab chart stability scenes/net_hanging\.json",
      "a bisection per integrator on the 32 x 32 cloth, minutes"),
+]
+# Commands whose point is to fail in a known way: (regex, exit code, why the handout shows it).
+EXPECTED_EXIT = [
+    (r"^\./springlab sim scenes/net_thesis\.json .*--integrator explicit_euler", 4,
+     "section 5: explicit Euler blows up on the thesis' cloth at dt = 1/60 s (exit 4, blow-up)"),
 ]
 TIME_CAP_S = 240  # per command: a `run` renders 240 frames; a `check` runs a lab's tests
 
@@ -122,8 +128,11 @@ def main():
                 code, output = None, f"no exit within {TIME_CAP_S} s\n{e.stdout or ''}{e.stderr or ''}"
             seconds = time.monotonic() - start
             ran += 1
+            expected = next(((c, why) for pattern, c, why in EXPECTED_EXIT if re.search(pattern, command)), (0, ""))
             missing_exercise = code == 3 and not instructor and "not implemented" in output
-            ok = code == 0 or missing_exercise
+            ok = code == expected[0] or missing_exercise
+            if expected[0] != 0:
+                print(f"        (expects exit {expected[0]}: {expected[1]})")
             if ok and out and code == 0 and not (root / out).exists():
                 ok, output = False, output + f"\n{out} was not written"
             print(f"{'ok' if ok else 'FAILED'} {where} ({seconds:.1f} s, exit {code}): {' '.join(words)}")
