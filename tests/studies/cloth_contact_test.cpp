@@ -55,10 +55,8 @@ TEST_P(ClothOnASphere, DrawnTrianglesStayOutsideTheSphere) {
 INSTANTIATE_TEST_SUITE_P(ShippedScenes, ClothOnASphere,
                          ::testing::Values("net_sphere_slope_weak_wind.json", "net_sphere_slope_strong_wind.json",
                                            "net_sphere_drop.json", "net_hanging.json"),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = info.param.substr(0, info.param.find('.'));
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
+                         [](const ::testing::TestParamInfo<std::string>& scene) {
+                           return scene.param.substr(0, scene.param.find('.'));
                          });
 
 TEST(ClothOnASphere, WithoutAnOffsetTrianglesCutIn) {
