@@ -146,6 +146,16 @@ class Simulation : public SceneFrontEnd {
   // contacts). lanczosEstimate (springlab/frequency_estimate.hpp) gives an estimate instead.
   virtual double angularFrequencyBound() const;
 
+  // ---- force terms, for the blow-up check's diagnosis -----------------------------------
+  // The lab's force terms by name, indexed as its accumulateForces tests them with
+  // forceTermOn(k) (e.g. "spring forces (exercise 1.1, springDamperForce)", "ground contact
+  // ..."). When the forces go non-finite, the blow-up check turns each term off in turn and
+  // names the one without which the force is finite. Empty (the default): it can only take
+  // the springs and gravity away.
+  virtual std::vector<std::string> forceTermNames() const { return {}; }
+  // Leave term k out of the forces (-1: none); diagnostics only, restored at once.
+  void muteForceTerm(int k) { mutedForceTerm_ = k; }
+
   // ---- the user's hand on a mass (viewer) ------------------------------------------------
   void grab(int index, const Vec3& target);  // mass follows target until release()
   void release();
@@ -173,6 +183,9 @@ class Simulation : public SceneFrontEnd {
   virtual void afterStep(double dt) { (void)dt; }
   // Called by reset() after the initial state is back: restore the lab's own data.
   virtual void onReset() {}
+  // Whether accumulateForces adds force term k of forceTermNames() (false only while the
+  // blow-up check's diagnosis leaves it out).
+  bool forceTermOn(int k) const { return k != mutedForceTerm_; }
   // Remember the current state as the one reset() returns to; call at the end of building.
   void markInitialState();
   // The user put energy in through the lab's own controls (a dragged collider): the
@@ -189,6 +202,7 @@ class Simulation : public SceneFrontEnd {
   State initialState_;
   BlowUpCheck blowUpCheck_;
   bool blowUpCheckEnabled_ = true;
+  int mutedForceTerm_ = -1;  // index into forceTermNames(), -1: every term acts
   std::optional<int> grabbed_;
   Vec3 grabTarget_ = Vec3::Zero();
 };

@@ -83,6 +83,7 @@ struct NetParameters {
   std::vector<PlaneCollider> planes;
   double absorption = 1.0;        // share of the approaching normal velocity a contact removes
   double friction = 0.0;          // Coulomb friction coefficient of the colliders
+  double contactOffset = 0.0;     // m, colliders hold masses this far out of their surface
   bool stretchLimiting = true;
   double maxStretch = 0.1;        // springs stay below (1 + maxStretch) L0
   bool selfCollision = false;
