@@ -1,7 +1,7 @@
 // Extended position-based dynamics (given loop; Macklin, Mueller and Chentanez 2016) on the
 // scene's springs, built on exercise 2.11. Each spring is a distance constraint of compliance
 // 1/k and constraint damping from its kd, so with enough iterations its equilibrium is the
-// force model's. Per substep of h = dt / substeps: predict with the external forces, project
+// force model's. External forces once per step; per substep of h = dt / substeps: predict, project
 // every constraint `iterations` times (Gauss-Seidel, multipliers from zero), v = (x - x_old)/h.
 // Contacts, stretch limiting and self-collision stay in the scene's afterStep (once per step).
 #include <cmath>
@@ -32,6 +32,10 @@ class Xpbd final : public Integrator {
   }
 
   void step(Simulation& sim, double dt) override {
+    // The external forces once per step, at its start, for every substep: they change slowly
+    // (gravity, air, wind), and each evaluation costs three passes over the springs (the
+    // scene's forces, then the springs' own taken out again), several times a projection sweep.
+    externalForces(sim, external_);
     const double h = dt / substeps_;
     for (int k = 0; k < substeps_; ++k) substep(sim, h);
   }
@@ -44,7 +48,6 @@ class Xpbd final : public Integrator {
     const int n = sim.numOfMasses();
 
     // Predict: the external forces move the masses freely for h (symplectic Euler).
-    externalForces(sim, external_);
     previous_ = s.pos;
     for (int i = 0; i < n; ++i) {
       s.vel[i] += (h * sim.inverseMass(i)) * external_[i];
