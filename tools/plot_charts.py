@@ -128,6 +128,9 @@ STYLE = {
     "rk4": ("tab:orange", "P"),
     "implicit_euler": ("tab:brown", "X"),
     "implicit_euler_blocks": ("tab:pink", "*"),
+    # position-based and projective methods (Lab 2, exercises 2.11 and 2.12)
+    "xpbd": ("tab:cyan", "h"),
+    "projective_dynamics": ("black", "p"),
 }
 EXTRA = ["tab:gray", "tab:cyan", "black"]
 

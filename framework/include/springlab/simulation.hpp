@@ -11,6 +11,7 @@
 // The model is constant between edits made through Simulation::editModel (pinning, the
 // panel's sliders, a study's scaling): the data changes every step.
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,7 +36,11 @@ namespace springlab {
 struct Stats {
   long steps = 0;             // integrator steps taken
   long forceEvaluations = 0;  // calls of evaluateForces
-  long solverIterations = 0;  // linear solver iterations (implicit methods)
+  long solverIterations = 0;  // linear solver iterations (implicit methods); XPBD sweeps and
+                              // projective dynamics' local/global iterations count here too
+  long constraintProjections = 0;  // XPBD: one constraint projected once
+  long backSubstitutions = 0;      // projective dynamics: solves with the prefactored matrix
+  long factorizations = 0;         // projective dynamics: sparse Cholesky factorisations
 };
 
 // A triangle of mass indices, counter-clockwise seen from outside (cloth, soft bodies).
@@ -85,6 +90,10 @@ class Simulation : public SceneFrontEnd {
   std::vector<Spring> springs;   // [s] indices into masses
   std::vector<Triangle> triangles;  // [t] surface for drawing and wind (may be empty)
   Vec3 gravitation = Vec3::Zero();  // m/s^2
+  // The scene's "integrator_options": option values by method name, then option name. Each
+  // integrator set on this simulation receives its own (setIntegrator), so a study that
+  // switches methods keeps the scene's XPBD iterations.
+  std::map<std::string, std::map<std::string, int>> integratorOptions;
 
   // ---- data: changes every step -----------------------------------------------------
   State state;                   // positions [n], velocities [n], time
