@@ -5,6 +5,8 @@
 //     material, 0.1 ms on the fabric); the implicit ones at the thesis' frame, 1/60 s.
 //   NetFrame/r/threads: the thesis' scene with implicit Euler (per-particle blocks), one step
 //     of 1/60 s per frame; its counters give the table's columns.
+#include <ctime>
+
 #include "bench_support.hpp"
 
 namespace springlab::bench {
@@ -51,6 +53,57 @@ BENCHMARK(NetFrame)
     ->ArgsProduct({{8, 16, 32, 48, 64, 128, 256}, {1}})
     ->Args({256, 2})
     ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// ---- The fabric's 5 s drape per method (XPBD and projective dynamics beside the others) -----
+// scenes/net_hanging.json without its sphere (0.2 kg/m^2, k = 400/40/2 N/m, 10 % stretch
+// limit, dt = 1/120 s, 2 steps per 1/60 s frame), one thread: one iteration is the whole 5 s
+// run from the scene's start. Counters: ms_per_frame (CPU time / 300 frames) and drape_m (the
+// lowest point after 5 s), to compare with the full implicit solve's drape.
+//   NetFabricDrape/r/method/iterations/substeps: method 0 implicit_euler, 1 xpbd,
+//     2 projective_dynamics (iterations and substeps: the scene's integrator_options).
+const char* const kDrapeMethods[] = {"implicit_euler", "xpbd", "projective_dynamics"};
+
+void NetFabricDrape(benchmark::State& bench) {
+  const int r = static_cast<int>(bench.range(0));
+  const std::string method = kDrapeMethods[bench.range(1)];
+  const std::string iterations = std::to_string(bench.range(2)), substeps = std::to_string(bench.range(3));
+  useThreads(1);
+  double drape = 0.0, cpu = 0.0;
+  constexpr int kSteps = 600, kFrames = 300;
+  for (auto _ : bench) {
+    bench.PauseTiming();
+    LoadedScene scene = loadScene("net_hanging.json", {"net.colliders.spheres=[]", "net.resolution=" + std::to_string(r),
+                                                       "integrator_options.xpbd.iterations=" + iterations,
+                                                       "integrator_options.xpbd.substeps=" + substeps,
+                                                       "integrator_options.projective_dynamics.iterations=" + iterations});
+    scene.sim->setIntegrator(registry().makeIntegrator(method));
+    const std::clock_t start = std::clock();
+    bench.ResumeTiming();
+    for (int n = 0; n < kSteps; ++n) scene.sim->operate(scene.settings.dt);
+    bench.PauseTiming();
+    cpu += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+    for (const Observable& o : scene.sim->observables()) {
+      if (o.name == "drape_height") drape = o.value;
+    }
+    bench.ResumeTiming();
+  }
+  bench.counters["ms_per_frame"] = 1e3 * cpu / (static_cast<double>(bench.iterations()) * kFrames);
+  bench.counters["drape_m"] = drape;
+}
+BENCHMARK(NetFabricDrape)
+    ->ArgNames({"r", "method", "iterations", "substeps"})
+    ->Args({32, 0, 1, 1})
+    ->Args({32, 1, 40, 1})
+    ->Args({32, 1, 1, 16})
+    ->Args({32, 2, 1, 1})
+    ->Args({32, 2, 2, 1})
+    ->Args({64, 0, 1, 1})
+    ->Args({64, 1, 1, 32})
+    ->Args({64, 1, 1, 64})
+    ->Args({64, 2, 1, 1})
+    ->Args({64, 2, 2, 1})
+    ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -2,10 +2,14 @@
 """Draw springlab's speed-against-accuracy charts from the CSV files the app writes.
 
 usage: /usr/bin/python3 tools/plot_charts.py work-precision|stability|resolution FOLDER
+       /usr/bin/python3 tools/plot_charts.py plan KIND SCENE ROOT TREE [OPTIONS...]
 
-FOLDER holds the CSV and JSON files of `springlab-* chart KIND` (default out/charts/<scene>).
+FOLDER holds the CSV and JSON files of `springlab-* chart KIND`.
 Writes KIND.png and KIND.svg (stability also stability_map.png/.svg) into the same folder.
-Needs matplotlib: Debian's python3-matplotlib, so run it with /usr/bin/python3.
+`plan` is what `./springlab chart` asks first: it prints the output folder, then the options
+for the app one per line (the user's, plus the scene's chart defaults for the options the
+user did not give). Needs matplotlib for drawing (Debian's python3-matplotlib, so run it with
+/usr/bin/python3); `plan` needs only the standard library.
 """
 import csv
 import json
@@ -13,10 +17,106 @@ import math
 import pathlib
 import sys
 
-import matplotlib
+plt = None  # matplotlib.pyplot, imported by main() when a chart is drawn
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+
+# ---- defaults and output folders of `./springlab chart` -------------------------------------
+# Per chart kind and scene (file name without .json): the options that make the chart show
+# what it is for on that scene, in a few minutes. The handouts' charts use the same settings
+# (tools/handout_charts.sh). An option the user gives replaces its default; `--set KEY=...`
+# replaces only the default of that KEY.
+# - work-precision: a window without contact events (the rope reaches the ground after about
+#   0.55 s; its ground contact zig-zags the curves and hides the orders); the cloth at 32 x 32
+#   with stretch limiting off (a position correction that hides the integrators' error).
+# - stability: the same cloth; the stiffness x dt map only where it is cheap (the rope).
+# - resolution: an observable that depends on the resolution, with resolutions that finish.
+CLOTH = ["--set", "net.resolution=32", "--set", "net.stretch_limit.enabled=false"]
+CHART_DEFAULTS = {
+    ("work-precision", "rope"): ["--time", "0.5"],
+    ("work-precision", "rope_2d"): ["--time", "0.5"],
+    ("work-precision", "mass_on_spring"): ["--time", "5"],
+    ("work-precision", "net_hanging"): CLOTH + ["--time", "0.2", "--levels", "6", "--repeats", "1"],
+    ("work-precision", "softbody_ball"): ["--time", "0.2", "--levels", "6", "--repeats", "1"],
+    ("stability", "mass_on_spring"): ["--no-map"],
+    ("stability", "net_hanging"): CLOTH + ["--no-map"],
+    ("stability", "softbody_ball"): ["--no-map"],
+    ("resolution", "rope"): ["--observable", "sag", "--tol", "0.02"],
+    ("resolution", "net_hanging"): ["--observable", "drape_height", "--tol", "0.02", "--time", "1",
+                                    "--resolutions", "8,16,32"],
+    ("resolution", "softbody_ball"): ["--observable", "volume", "--tol", "0.02", "--time", "0.5",
+                                      "--resolutions", "1,2,3"],
+}
+FLAGS = {"--no-map"}  # options without a value
+
+
+def split_options(args):
+    """The options as (key, [tokens]) in order: `--set K=V` is keyed by K, `--opt=v` is split."""
+    options, i = [], 0
+    while i < len(args):
+        a = args[i]
+        if a.startswith("--") and "=" in a and not a.startswith("--set="):
+            name, value = a.split("=", 1)
+            tokens, i = [name, value], i + 1
+        elif a.startswith("--set="):
+            tokens, i = ["--set", a[len("--set="):]], i + 1
+        elif a in FLAGS or not a.startswith("--") or i + 1 >= len(args):
+            tokens, i = [a], i + 1
+        else:
+            tokens, i = [a, args[i + 1]], i + 2
+        key = tokens[0]
+        if key == "--set" and len(tokens) == 2:
+            key = "--set " + tokens[1].split("=", 1)[0]
+        options.append((key, tokens))
+    return options
+
+
+def with_defaults(kind, scene_name, args):
+    """The user's options, then the defaults of (kind, scene) the user did not give."""
+    given = {key for key, _ in split_options(args)}
+    added = [tokens for key, tokens in split_options(CHART_DEFAULTS.get((kind, scene_name), [])) if key not in given]
+    return list(args) + [t for tokens in added for t in tokens]
+
+
+def slug(tokens):
+    """A folder-name-safe summary of options: `--time 0.5 --set net.resolution=32` -> `time-0.5_net.resolution-32`."""
+    parts = []
+    for key, option in split_options(tokens):
+        if key in ("--out", "--threads"):
+            continue
+        name = option[0].lstrip("-")
+        value = option[1] if len(option) > 1 else ""
+        if name == "set":
+            name, value = value.split("=", 1) if "=" in value else (value, "")
+        text = name + ("-" + value.replace(",", "-") if value else "")
+        part = "".join(c if c.isalnum() or c in "._-" else "" for c in text)
+        parts.append(part)
+    return "_".join(parts)
+
+
+def plan(kind, scene, root, tree, args):
+    """The output folder and the app's options of one `./springlab chart` run. Runs with other
+    options, another tree or another kind get another folder, so none overwrites another:
+    out/charts/<scene>/<kind>[_<options>][_reference]/."""
+    name = pathlib.Path(scene).name
+    name = name[:-len(".json")] if name.endswith(".json") else name
+    full = with_defaults(kind, name, args)
+    user_out = [tokens[1] for key, tokens in split_options(args) if key == "--out" and len(tokens) == 2]
+    if user_out:
+        folder = pathlib.Path(user_out[-1])
+    else:
+        tag = "_".join(p for p in (kind, slug(full), "reference" if tree == "reference" else "") if p)
+        folder = pathlib.Path(root) / "out" / "charts" / name / tag[:150]
+    return folder, [t for key, tokens in split_options(full) if key != "--out" for t in tokens]
+
+
+def _pyplot():
+    # matplotlib only where a chart is drawn: `plan` runs on any Python.
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot
+
+    return matplotlib.pyplot
 
 # One colour and marker per integrator, the same in every chart.
 STYLE = {
@@ -28,6 +128,9 @@ STYLE = {
     "rk4": ("tab:orange", "P"),
     "implicit_euler": ("tab:brown", "X"),
     "implicit_euler_blocks": ("tab:pink", "*"),
+    # position-based and projective methods (Lab 2, exercises 2.11 and 2.12)
+    "xpbd": ("tab:cyan", "h"),
+    "projective_dynamics": ("black", "p"),
 }
 EXTRA = ["tab:gray", "tab:cyan", "black"]
 
@@ -41,7 +144,76 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
+def overlapping_texts(fig):
+    """Pairs of visible, non-empty texts of the figure whose boxes overlap (as drawn)."""
+    import matplotlib.text
+
+    renderer = fig.canvas.get_renderer()
+    # Tick labels count only where matplotlib draws them: visible, at a tick inside the view.
+    ticks, drawn = set(), []
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            lo, hi = sorted(axis.get_view_interval())
+            for locs, labels in ((axis.get_majorticklocs(), axis.get_majorticklabels()),
+                                 (axis.get_minorticklocs(), axis.get_minorticklabels())):
+                for loc, label in zip(locs, labels):
+                    ticks.add(id(label))
+                    if lo - 1e-9 * abs(lo) <= loc <= hi + 1e-9 * abs(hi):
+                        drawn.append(label)
+    drawn_ids = {id(t) for t in drawn}
+    texts = [t for t in fig.findobj(matplotlib.text.Text)
+             if t.get_visible() and t.get_text().strip() and (id(t) not in ticks or id(t) in drawn_ids)]
+    boxes = [(t.get_text(), t.get_window_extent(renderer)) for t in texts]
+    pairs = []
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            (a, p), (b, q) = boxes[i], boxes[j]
+            if p.width > 0 and q.width > 0 and p.overlaps(q):
+                pairs.append((a, b))
+    return pairs
+
+
+def covering_notes(fig):
+    """Notes written into an axes (annotations, ax.text) that cover one of its markers or
+    bars, or reach out of it: (note, what) pairs."""
+    from matplotlib.collections import LineCollection
+    from matplotlib.transforms import Bbox
+
+    renderer = fig.canvas.get_renderer()
+    found = []
+    for ax in fig.axes:
+        frame = ax.get_window_extent(renderer)
+        marks = []
+        for coll in ax.collections:
+            if isinstance(coll, LineCollection):
+                for seg in coll.get_segments():
+                    pts = ax.transData.transform(seg)
+                    marks.append(Bbox([pts.min(axis=0) - 1, pts.max(axis=0) + 1]))
+            else:
+                sizes = coll.get_sizes()
+                for k, xy in enumerate(coll.get_offsets()):
+                    r = (sizes[k % len(sizes)] ** 0.5 / 2 if len(sizes) else 3) * fig.dpi / 72
+                    cx, cy = ax.transData.transform(xy)
+                    marks.append(Bbox([[cx - r, cy - r], [cx + r, cy + r]]))
+        for t in ax.texts:
+            if not (t.get_visible() and t.get_text().strip()):
+                continue
+            box = t.get_window_extent(renderer)
+            if box.x0 < frame.x0 - 1 or box.x1 > frame.x1 + 1 or box.y0 < frame.y0 - 1 or box.y1 > frame.y1 + 1:
+                found.append((t.get_text(), "the edge of its panel"))
+            if any(box.overlaps(m) for m in marks):
+                found.append((t.get_text(), "a marker or bar"))
+    return found
+
+
 def save(fig, folder, stem):
+    # Labels that cover each other, or a note over the data, are bugs of the chart: say so
+    # (tests/studies/check_charts.py fails on these lines).
+    fig.canvas.draw()
+    for a, b in overlapping_texts(fig):
+        print(f"overlapping labels in {stem}: {a!r} and {b!r}")
+    for note, what in covering_notes(fig):
+        print(f"overlapping labels in {stem}: {note!r} covers {what}")
     for ext in ("png", "svg"):
         fig.savefig(folder / f"{stem}.{ext}", dpi=130, bbox_inches="tight")
     plt.close(fig)
@@ -93,46 +265,53 @@ def work_precision(folder):
 def stability(folder):
     rows = read_csv(folder / "stability.csv")
     facts = json.loads((folder / "stability.json").read_text())
-    fig, ax = plt.subplots(figsize=(10.5, 5.5))
+    # About 1.2 inches a method, so each column's note has room beside its neighbours'.
+    fig, ax = plt.subplots(figsize=(max(10.5, 1.2 * len(rows) + 1.5), 5.8))
     names = [r["integrator"] for r in rows]
     xs = range(len(rows))
-    measured = [float(r["measured_dt_s"]) for r in rows]
-    finite = [m for m in measured if 0 < m < float("inf")]
     inf = float("inf")
+    measured = [float(r["measured_dt_s"]) for r in rows]
     predictions = [float(r["predicted_dt_s"]) for r in rows]
+    finite = [m for m in measured if 0 < m < inf]
     top = max(finite + [p for p in predictions if 0 < p < inf]) * 3 if finite else 1.0
-    for x, r in zip(xs, rows):
+    for x, r, m, p in zip(xs, rows, measured, predictions):
         colour, marker = style(r["integrator"], x)
-        m = float(r["measured_dt_s"])
-        ax.scatter([x], [m if 0 < m < float("inf") else top], marker=marker, s=90, color=colour, zorder=4)
-        p = float(r["predicted_dt_s"])
-        if p == float("inf"):
+        shown = m if 0 < m < inf else top
+        ax.scatter([x], [shown], marker=marker, s=90, color=colour, zorder=4)
+        # Each column's note is centred on it, above both its marker and its bar, in a few
+        # short lines: it stays within the column and never covers a marker or a bar.
+        if p == inf:
             # Unconditionally stable in theory (implicit Euler): say what the bisection found.
-            text = "c = inf: no limit found" if m == float("inf") else f"c = inf in theory;\nfails at {m:.3g} s"
-            ax.annotate(text, (x, m if m < float("inf") else top), textcoords="offset points", xytext=(-40, 12),
-                        fontsize=8, color="0.3")
+            text = "c = inf:\nno limit found" if m == inf else f"c = inf in theory;\nfails at {m:.3g} s"
+            above = shown
         elif p > 0:
             ax.hlines(p, x - 0.35, x + 0.35, color="black", lw=2)
-            ax.annotate(f"measured {m / p:.3f}x\npredicted", (x, m), textcoords="offset points", xytext=(12, 4),
-                        fontsize=8)
+            text = f"measured\n{m / p:.3g} x predicted"
+            above = max(shown, p)
         else:
-            ax.annotate("no undamped limit (c = 0):\nsurvives the trial time only", (x, m),
-                        textcoords="offset points", xytext=(-40, 12), fontsize=8, color="0.3")
+            text = "c = 0: no undamped\nlimit; survives the\ntrial time only"
+            above = shown
+        ax.annotate(text, (x, above), textcoords="offset points", xytext=(0, 10), ha="center", va="bottom",
+                    fontsize=7.5, color="0.15" if 0 < p < inf else "0.35")
     # Legend proxies: the marker of each method is its measured dt, the bar the prediction.
+    # Above the axes, so it covers no column.
     ax.scatter([], [], marker="o", color="0.4", s=60, label="measured (bisection on the blow-up check)")
     ax.plot([], [], color="black", lw=2, label="predicted c / w_max")
     lo = min(finite + [top]) / 3
-    ax.set_ylim(lo, top * 1.5)
-    ax.set_xlim(-0.7, len(rows) - 0.3)
+    ax.set_ylim(lo, top * 4)  # room above the highest marker for its note
+    ax.set_xlim(-0.6, len(rows) - 0.4)
     ax.set_xticks(list(xs))
-    ax.set_xticklabels(names, rotation=20)
+    # Names level, every second one a line lower, so long neighbours never meet.
+    ax.set_xticklabels(names, fontsize=9)
+    for i, tick in enumerate(ax.xaxis.get_major_ticks()):
+        tick.set_pad(3.5 + 13 * (i % 2))
     ax.set_yscale("log")
     ax.set_ylabel("largest stable dt (s)")
     ax.grid(True, axis="y", which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, frameon=False)
     ax.set_title(f"Stability: {title_of(facts)}\nw_max = {facts['w_max_rad_s']:.4g} rad/s (Lanczos; Gershgorin bound "
                  f"{facts['gershgorin_rad_s']:.4g}); each trial {facts['duration_s']:.3g} s under the blow-up check",
-                 fontsize=10)
+                 fontsize=10, pad=24)
     save(fig, folder, "stability")
 
     map_path = folder / "stability_map.csv"
@@ -195,7 +374,10 @@ def resolution(folder):
         right.scatter([cost], [y], color=colour, s=140 if r["chosen"] == "1" else 60, marker=marker, zorder=4,
                       edgecolors="black" if r["chosen"] == "1" else "none")
         label = f"{r['resolution']}" + (" (finest: the reference)" if err == 0 else "")
-        right.annotate(label, (cost, y), textcoords="offset points", xytext=(6, 6), fontsize=8)
+        # The last (costliest) point's label to its left, so it stays inside the panel.
+        last = cost >= max(e[0] for e in errs)
+        right.annotate(label, (cost, y), textcoords="offset points", xytext=(-8, 6) if last else (6, 6),
+                       ha="right" if last else "left", fontsize=8)
     right.plot([e[0] for e in finite], [e[1] for e in finite], color="0.5", lw=1)
     right.axhline(facts["tolerance"], color="tab:red", ls="--", lw=1.2, label=f"tolerance {facts['tolerance']:g}")
     right.set_xscale("log")
@@ -210,9 +392,17 @@ def resolution(folder):
 
 
 def main():
+    if len(sys.argv) >= 6 and sys.argv[1] == "plan":
+        folder, options = plan(sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[5], sys.argv[6:])
+        print(folder)
+        for option in options:
+            print(option)
+        return 0
     if len(sys.argv) != 3 or sys.argv[1] not in ("work-precision", "stability", "resolution"):
         print(__doc__, file=sys.stderr)
         return 2
+    global plt
+    plt = _pyplot()
     folder = pathlib.Path(sys.argv[2])
     {"work-precision": work_precision, "stability": stability, "resolution": resolution}[sys.argv[1]](folder)
     return 0

@@ -115,6 +115,16 @@ std::string BlowUpCheck::blameForces(Simulation& sim) {
   }
   const Vec3 badForce = f[static_cast<std::size_t>(bad)];
 
+  // Which of the lab's own terms: leave each out in turn, and name the first without which
+  // mass `bad` is finite.
+  const std::vector<std::string> terms = sim.forceTermNames();
+  int culprit = -1;
+  for (int k = 0; k < static_cast<int>(terms.size()) && culprit < 0; ++k) {
+    sim.muteForceTerm(k);
+    if (forcesAtLast() && finite(f[static_cast<std::size_t>(bad)])) culprit = k;
+  }
+  sim.muteForceTerm(-1);
+
   // Which term: take the springs away (k = 0 would not do: 0 times a 0/0 direction is still
   // NaN), then gravity too, and see whether mass `bad` turns finite. Labs read the spring list
   // at every evaluation (a cache keyed on its size is rebuilt), and both come back below.
@@ -131,8 +141,13 @@ std::string BlowUpCheck::blameForces(Simulation& sim) {
   std::ostringstream os;
   os << "the forces went non-finite before the state did: at the last finite state (t = " << last_.time
      << " s, step " << lastStep_ << ") the force on mass " << bad << " is " << show(badForce) << " N";
-  if (withoutSprings) {
+  if (culprit >= 0) {
+    os << ", from the " << sim.kind() << "'s " << terms[static_cast<std::size_t>(culprit)]
+       << " (it is finite with that term left out)";
+  } else if (withoutSprings) {
     os << ", from the spring forces (it is finite without the springs)";
+  }
+  if (withoutSprings) {
     // What the framework can see: a spring at that mass with coincident ends or bad parameters.
     for (std::size_t j = 0; j < sim.springs.size(); ++j) {
       const Spring& s = sim.springs[j];
@@ -148,9 +163,14 @@ std::string BlowUpCheck::blameForces(Simulation& sim) {
         break;
       }
     }
+  } else if (culprit >= 0) {
+    // Named above.
   } else if (withoutGravity) {
     os << ", from gravity (it is finite without gravity: check the mass m = " << sim.masses[static_cast<std::size_t>(bad)].m
        << " kg and g)";
+  } else if (!terms.empty()) {
+    os << ", from more than one of the " << sim.kind()
+       << "'s force terms (it stays non-finite whichever one is left out)";
   } else {
     os << ", from the " << sim.kind()
        << "'s own forces (it stays non-finite without the springs and gravity: ground, air, wind, "
@@ -176,7 +196,14 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   if (why.empty()) {
     const Energies e = sim.energies();
     const double grown = e.kinetic + e.elastic + e.other;
-    if (!(grown <= kRunawayFactor * energyScale_)) {
+    if (!std::isfinite(grown)) {
+      // A non-finite energy of a finite state is a non-finite value, not a growth: the forces'
+      // story below, not dt's.
+      std::ostringstream os;
+      os << "kinetic + elastic + other potential energy is " << grown << " J (kinetic " << e.kinetic << ", elastic "
+         << e.elastic << ", other " << e.other << ")";
+      why = os.str();
+    } else if (!(grown <= kRunawayFactor * energyScale_)) {
       std::ostringstream os;
       os << "kinetic + elastic + other potential energy reached " << grown << " J, over " << kRunawayFactor
          << " times the scene's energy scale of " << energyScale_ << " J";

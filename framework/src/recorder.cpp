@@ -49,6 +49,8 @@ void Recorder::record(const Simulation& sim) {
     frame["momentum"] = toJson(p);
     frame["force_evaluations"] = sim.stats.forceEvaluations;
     frame["solver_iterations"] = sim.stats.solverIterations;
+    frame["constraint_projections"] = sim.stats.constraintProjections;
+    frame["back_substitutions"] = sim.stats.backSubstitutions;
     auto& observed = frame["observables"] = nlohmann::json::object();
     for (const Observable& o : sim.observables()) observed[o.name] = o.value;
     auto& pos = frame["pos"] = nlohmann::json::array();

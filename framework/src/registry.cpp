@@ -124,6 +124,21 @@ SceneSettings Registry::readSettings(SceneReader& reader) const {
   return s;
 }
 
+void Registry::readIntegratorOptions(SceneReader& reader, Simulation& sim) const {
+  // Optional: {"xpbd": {"iterations": 4, "substeps": 2}, ...}, each method's own names, >= 1.
+  if (!reader.has("integrator_options")) return;
+  SceneReader all = reader.object("integrator_options");
+  for (const std::string& method : integratorNames()) {
+    if (!all.has(method)) continue;
+    SceneReader options = all.object(method);
+    for (const std::string& option : makeIntegrator(method)->optionNames()) {
+      if (options.has(option)) sim.integratorOptions[method][option] = options.integer(option, 1);
+    }
+    options.rejectUnknownKeys();
+  }
+  all.rejectUnknownKeys();
+}
+
 LoadedScene Registry::loadScene(SceneReader& reader) const {
   const SceneSettings s = readSettings(reader);
 
@@ -135,6 +150,7 @@ LoadedScene Registry::loadScene(SceneReader& reader) const {
   SceneReader section = reader.object(s.lab);
   LoadedScene loaded{s, factory->second(section, s)};
   section.rejectUnknownKeys();
+  readIntegratorOptions(reader, *loaded.sim);
   reader.rejectUnknownKeys();
   loaded.sim->setIntegrator(makeIntegrator(s.integrator));
   return loaded;

@@ -131,11 +131,17 @@ double RopeSimulation::otherPotentialEnergy(const State& s) const {
 Bounds RopeSimulation::reach() const {
   double length = 0.0;
   for (const Spring& s : springs) length += s.springLength;
-  const double L = std::max(length, 0.5);
+  const double L = std::max(length, 0.1);
   const Vec3& c = ropeConnectionPos;
-  Bounds b;
-  b.lo = Vec3(c.x() - L, std::max(ground.height, c.y() - L), c.z() - 0.25 * L);
-  b.hi = Vec3(c.x() + L, c.y() + 0.15 * L, c.z() + 0.25 * L);
+  // The masses where they start, and where the rope swings: a rope that hangs free (the
+  // ground further below than its length) sweeps a circle of its length around the
+  // connection point; one the ground catches lies down on the side it fell to. It hangs a
+  // little longer than its rest length.
+  const double hanging = c.y() - ground.height > L ? L : 0.0;
+  Bounds b = Simulation::reach();
+  b.include(c);
+  b.lo = b.lo.cwiseMin(Vec3(c.x() - hanging, std::max(ground.height, c.y() - 1.2 * L), c.z() - 0.25 * hanging));
+  b.hi = b.hi.cwiseMax(Vec3(c.x() + hanging, c.y() + 0.05 * L, c.z() + 0.25 * hanging));
   if (dimension == 2) b.lo.z() = b.hi.z() = c.z();
   return b;
 }

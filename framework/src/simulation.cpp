@@ -69,6 +69,10 @@ void Simulation::forceJacobian(const State& s, ForceJacobian& J, std::string_vie
 void Simulation::setIntegrator(std::unique_ptr<Integrator> integrator) {
   if (!integrator) throw std::invalid_argument("Simulation::setIntegrator: null integrator");
   integrator_ = std::move(integrator);
+  const auto options = integratorOptions.find(integrator_->name());
+  if (options != integratorOptions.end()) {
+    for (const auto& [option, value] : options->second) integrator_->setOption(option, value);
+  }
   integrator_->reset();
 }
 

@@ -68,6 +68,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"mass_on_spring.json", "midpoint"}, Case{"rope.json", "rk4"},
                       Case{"net_hanging.json", "symplectic_euler"}, Case{"net_hanging.json", "implicit_euler"},
                       Case{"net_hanging.json", "implicit_euler_blocks"}, Case{"net_flag.json", "implicit_euler"},
+                      Case{"net_hanging.json", "xpbd"}, Case{"net_hanging.json", "projective_dynamics"},
                       Case{"softbody_ball.json", "symplectic_euler"}, Case{"softbody_ring_2d.json", "symplectic_euler"}),
     [](const ::testing::TestParamInfo<Case>& param) {
       std::string name = param.param.scene.substr(0, param.param.scene.find('.')) + "_" + param.param.integrator;

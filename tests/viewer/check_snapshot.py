@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Check a viewer snapshot: it must exist, be a PNG, and not be blank.
 
-Usage: check_snapshot.py PNG [--expect-red] [--expect-rope] [--expect-drawn]
+Usage: check_snapshot.py PNG [--expect-red] [--expect-rope] [--expect-drawn] [--min-rope-height F]
 
 Blank means fewer than 1 % of the pixels differ from the most common colour (a window that
 drew nothing, or only its background). --expect-red also requires the red panel of a missing
@@ -10,6 +10,9 @@ requires the masses and springs, drawn in force colours from green to red: at le
 saturated green-to-red pixels (max(r, g) > 140, b < 90, |r - g| > 60) and no red panel.
 --expect-drawn requires the scene itself instead of a missing-exercise panel (shaded cloth is
 not in saturated force colours): no red panel.
+--min-rope-height F requires the rope's force-coloured pixels (left of the control panel, which
+starts at 70 % of the width) to span at least F of the window's height: the camera frames the
+rope instead of showing it small in a large box.
 Only the standard library: zlib for the data, struct for the chunks, PNG filters by hand.
 """
 import struct
@@ -71,6 +74,7 @@ def main():
         return 1
     path, expect_red, expect_rope = sys.argv[1], "--expect-red" in sys.argv[2:], "--expect-rope" in sys.argv[2:]
     expect_drawn = "--expect-drawn" in sys.argv[2:]
+    min_height = float(sys.argv[sys.argv.index("--min-rope-height") + 1]) if "--min-rope-height" in sys.argv else 0.0
     try:
         width, height, bpp, rows = read_png(path)
     except (OSError, ValueError, zlib.error) as e:
@@ -80,7 +84,8 @@ def main():
     pixels = Counter()
     red = 0
     rope = 0
-    for row in rows:
+    rope_rows = []  # rows holding force-coloured pixels of the scene (left of the panel)
+    for y, row in enumerate(rows):
         for i in range(0, len(row), bpp):
             r, g, b = row[i], row[i + 1], row[i + 2]
             pixels[(r, g, b)] += 1
@@ -88,6 +93,8 @@ def main():
                 red += 1
             if max(r, g) > 140 and b < 90 and abs(r - g) > 60:
                 rope += 1
+                if i // bpp < 0.7 * width and (not rope_rows or rope_rows[-1] != y):
+                    rope_rows.append(y)
     total = width * height
     common, count = pixels.most_common(1)[0]
     differing = 1.0 - count / total
@@ -103,6 +110,12 @@ def main():
     if expect_rope and (rope < 300 or red >= 0.02 * total):
         print("FAIL: no rope in force colours, or a missing-exercise panel, in the snapshot")
         ok = False
+    rope_height = (rope_rows[-1] - rope_rows[0] + 1) / height if rope_rows else 0.0
+    if min_height > 0:
+        print(f"the rope spans {rope_height:.0%} of the window's height")
+        if rope_height < min_height:
+            print(f"FAIL: the rope spans less than {min_height:.0%} of the window's height: the camera does not frame it")
+            ok = False
     if expect_drawn and red >= 0.02 * total:
         print("FAIL: a missing-exercise panel instead of the scene in the snapshot")
         ok = False

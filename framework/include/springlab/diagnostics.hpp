@@ -59,8 +59,9 @@ class BlowUpCheck {
   void admitUserEnergy(const Simulation& sim);
   // Throws BlowUp naming the likely cause. A non-finite state: the forces are evaluated again
   // at the last finite state the check saw; when one is non-finite there, the message names
-  // the first such mass and the term (springs, gravity, or the lab's own forces) that makes it
-  // non-finite, and does not blame dt. Otherwise (and for runaway energy) it predicts the safe
+  // the first such mass and the term that makes it non-finite (the lab's forceTermNames(),
+  // each left out in turn; else springs, gravity, or the lab's own forces), and does not
+  // blame dt. Otherwise (and for runaway energy) it predicts the safe
   // dt from lanczosEstimate at the scene's initial state (the blown-up state says nothing
   // about the scene's stiffness); a damped explicit Euler gets its damped limit.
   // Remembers the state as the last finite one when it passes.

@@ -2,7 +2,9 @@
 // The one integrator interface. An integrator advances a Simulation's State by one step,
 // asking the simulation for forces through Simulation::evaluateForces (which counts them).
 // Integrators are strategies: any of them runs on any lab's system.
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace springlab {
 
@@ -27,6 +29,15 @@ class Integrator {
 
   // Advance sim.state by dt: positions, velocities and time.
   virtual void step(Simulation& sim, double dt) = 0;
+
+  // Integer settings a scene may give this method (XPBD's "iterations" and "substeps"), in
+  // the scene's "integrator_options": {"<method>": {"<option>": value}}. None by default.
+  virtual std::vector<std::string> optionNames() const { return {}; }
+  // Set one of optionNames() (value >= 1); the registry validates names and values first.
+  virtual void setOption(const std::string& option, int value) {
+    (void)value;
+    throw std::invalid_argument(name() + " has no option \"" + option + "\"");
+  }
 };
 
 }  // namespace springlab

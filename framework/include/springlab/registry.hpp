@@ -78,6 +78,9 @@ class Registry {
 
  private:
   SceneSettings readSettings(SceneReader& reader) const;
+  // The scene's optional "integrator_options" into sim.integratorOptions; SceneError naming
+  // the key for a method or option this build does not know.
+  void readIntegratorOptions(SceneReader& reader, Simulation& sim) const;
 
   std::map<std::string, IntegratorFactory> integrators_;
   std::map<std::string, SceneFactory> scenes_;

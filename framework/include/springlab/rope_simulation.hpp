@@ -59,8 +59,8 @@ class RopeSimulation : public Simulation {
   void setControlVelocity(const Vec3& velocity) override;
   double angularFrequencyBound() const override;
   std::optional<double> groundHeight() const override { return ground.height; }
-  // Everywhere the rope can reach: a box of its length around the connection point, cut at
-  // the ground below and a little above the connection point.
+  // Where the rope is and swings: its masses, and the circle its free-hanging part (down to
+  // the ground) sweeps around the connection point, cut at the ground.
   Bounds reach() const override;
   // "sag": how far the lowest mass hangs below the connection point (m);
   // "tip_y": the height of the free end (m).

@@ -11,6 +11,7 @@
 // The model is constant between edits made through Simulation::editModel (pinning, the
 // panel's sliders, a study's scaling): the data changes every step.
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,7 +36,11 @@ namespace springlab {
 struct Stats {
   long steps = 0;             // integrator steps taken
   long forceEvaluations = 0;  // calls of evaluateForces
-  long solverIterations = 0;  // linear solver iterations (implicit methods)
+  long solverIterations = 0;  // linear solver iterations (implicit methods); XPBD sweeps and
+                              // projective dynamics' local/global iterations count here too
+  long constraintProjections = 0;  // XPBD: one constraint projected once
+  long backSubstitutions = 0;      // projective dynamics: solves with the prefactored matrix
+  long factorizations = 0;         // projective dynamics: sparse Cholesky factorisations
 };
 
 // A triangle of mass indices, counter-clockwise seen from outside (cloth, soft bodies).
@@ -85,6 +90,10 @@ class Simulation : public SceneFrontEnd {
   std::vector<Spring> springs;   // [s] indices into masses
   std::vector<Triangle> triangles;  // [t] surface for drawing and wind (may be empty)
   Vec3 gravitation = Vec3::Zero();  // m/s^2
+  // The scene's "integrator_options": option values by method name, then option name. Each
+  // integrator set on this simulation receives its own (setIntegrator), so a study that
+  // switches methods keeps the scene's XPBD iterations.
+  std::map<std::string, std::map<std::string, int>> integratorOptions;
 
   // ---- data: changes every step -----------------------------------------------------
   State state;                   // positions [n], velocities [n], time
@@ -146,6 +155,16 @@ class Simulation : public SceneFrontEnd {
   // contacts). lanczosEstimate (springlab/frequency_estimate.hpp) gives an estimate instead.
   virtual double angularFrequencyBound() const;
 
+  // ---- force terms, for the blow-up check's diagnosis -----------------------------------
+  // The lab's force terms by name, indexed as its accumulateForces tests them with
+  // forceTermOn(k) (e.g. "spring forces (exercise 1.1, springDamperForce)", "ground contact
+  // ..."). When the forces go non-finite, the blow-up check turns each term off in turn and
+  // names the one without which the force is finite. Empty (the default): it can only take
+  // the springs and gravity away.
+  virtual std::vector<std::string> forceTermNames() const { return {}; }
+  // Leave term k out of the forces (-1: none); diagnostics only, restored at once.
+  void muteForceTerm(int k) { mutedForceTerm_ = k; }
+
   // ---- the user's hand on a mass (viewer) ------------------------------------------------
   void grab(int index, const Vec3& target);  // mass follows target until release()
   void release();
@@ -173,6 +192,9 @@ class Simulation : public SceneFrontEnd {
   virtual void afterStep(double dt) { (void)dt; }
   // Called by reset() after the initial state is back: restore the lab's own data.
   virtual void onReset() {}
+  // Whether accumulateForces adds force term k of forceTermNames() (false only while the
+  // blow-up check's diagnosis leaves it out).
+  bool forceTermOn(int k) const { return k != mutedForceTerm_; }
   // Remember the current state as the one reset() returns to; call at the end of building.
   void markInitialState();
   // The user put energy in through the lab's own controls (a dragged collider): the
@@ -189,6 +211,7 @@ class Simulation : public SceneFrontEnd {
   State initialState_;
   BlowUpCheck blowUpCheck_;
   bool blowUpCheckEnabled_ = true;
+  int mutedForceTerm_ = -1;  // index into forceTermNames(), -1: every term acts
   std::optional<int> grabbed_;
   Vec3 grabTarget_ = Vec3::Zero();
 };

@@ -11,7 +11,7 @@ constexpr float kPi = 3.14159265f;
 constexpr float kOrbitRadiansPerPixel = 0.008f;
 }  // namespace
 
-void Camera::frame(const glm::vec3& lo, const glm::vec3& hi, float aspect) {
+void Camera::frame(const glm::vec3& lo, const glm::vec3& hi, float aspect, float freeLeft, float freeRight) {
   // Fit each corner in camera axes: |x| <= (d - z) tan(fovx/2) and |y| <= (d - z) tan(fovy/2),
   // where z points from the target towards the eye. The largest d needed wins.
   target_ = 0.5f * (lo + hi);
@@ -19,7 +19,9 @@ void Camera::frame(const glm::vec3& lo, const glm::vec3& hi, float aspect) {
   const glm::vec3 right = glm::normalize(glm::cross(forward(), glm::vec3(0, 1, 0)));
   const glm::vec3 up = glm::cross(right, forward());
   const float tanY = std::tan(0.5f * fovy_);
-  const float tanX = tanY * std::max(aspect, 0.1f);
+  const float freeWidth = std::clamp(freeRight - freeLeft, 0.1f, 1.0f);
+  const float tanX = tanY * std::max(aspect * freeWidth, 0.1f);
+  shiftX_ = std::clamp(freeLeft + freeRight - 1.0f, -0.9f, 0.9f);  // the free part's centre, in NDC
   float d = 0.1f;
   for (int c = 0; c < 8; ++c) {
     const glm::vec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
@@ -56,7 +58,8 @@ glm::mat4 Camera::view() const { return glm::lookAt(eye(), target_, glm::vec3(0,
 
 glm::mat4 Camera::projection(float aspect) const {
   // Near and far follow the distance so that zooming never clips the scene.
-  return glm::perspective(fovy_, std::max(aspect, 0.01f), 0.01f * distance_, 100.0f * distance_);
+  const glm::mat4 shift = glm::translate(glm::mat4(1.0f), glm::vec3(shiftX_, 0.0f, 0.0f));
+  return shift * glm::perspective(fovy_, std::max(aspect, 0.01f), 0.01f * distance_, 100.0f * distance_);
 }
 
 float Camera::pixelAngle(int h) const { return 2.0f * std::tan(0.5f * fovy_) / static_cast<float>(std::max(h, 1)); }

@@ -13,8 +13,10 @@ struct Ray {
 
 class Camera {
  public:
-  // Place the target at the box's centre and move back until every corner is in view.
-  void frame(const glm::vec3& lo, const glm::vec3& hi, float aspect);
+  // Place the target at the box's centre and move back until every corner is in view in the
+  // part of the window from freeLeft to freeRight (fractions of its width, left of the
+  // control panel and right of the HUD), which the lens is shifted to centre on.
+  void frame(const glm::vec3& lo, const glm::vec3& hi, float aspect, float freeLeft = 0.0f, float freeRight = 1.0f);
 
   void orbit(float dxPixels, float dyPixels);
   void zoom(float factor);  // distance *= factor
@@ -36,6 +38,7 @@ class Camera {
   float yaw_ = 0.25f;      // rad, around +y; 0 looks along -z
   float pitch_ = 0.3f;     // rad, above the horizon
   float fovy_ = 0.7854f;   // rad (45 degrees)
+  float shiftX_ = 0.0f;    // lens shift: where the target appears, in normalised device x
 };
 
 }  // namespace springlab::viewer

@@ -49,18 +49,32 @@ void drawHud(const HudInfo& hud) {
   ImGui::End();
 }
 
+namespace {
+// The width of every slider and combo of the panel; their labels sit to the right of them
+// and the window grows to hold the longest (it resizes to its content), so no label is cut.
+constexpr float kSliderWidth = 190.0f;
+
+// Whether the last item (a slider or combo with its label) ends inside the window's content
+// region; records its label in `cut` when it does not.
+void noteIfCut(const char* label, std::vector<std::string>& cut) {
+  const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+  if (ImGui::GetItemRectMax().x > right + 0.5f) cut.emplace_back(label);
+}
+}  // namespace
+
 void drawControls(Simulation* sim, const std::vector<std::string>& integratorNames, const std::string& integrator,
                   double stableDt, RunControl& control) {
+  // Top right; the pivot keeps the right edge there as the window sizes itself to its
+  // widest line (the buttons, or the longest slider label).
   const ImGuiIO& io = ImGui::GetIO();
-  const float width = 330.0f;
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - width - 10.0f, 10.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(width, 0.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 10.0f, 10.0f), ImGuiCond_FirstUseEver, ImVec2(1.0f, 0.0f));
   ImGui::SetNextWindowBgAlpha(0.8f);
-  if (!ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+  if (!ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::End();
     return;
   }
-  ImGui::PushItemWidth(-120.0f);
+  control.cutLabels.clear();
+  ImGui::PushItemWidth(kSliderWidth);
 
   // Run control: buttons mirror the keys P, N, R and S.
   if (ImGui::Button(control.paused ? "Run (P)" : "Pause (P)")) control.paused = !control.paused;
@@ -77,7 +91,9 @@ void drawControls(Simulation* sim, const std::vector<std::string>& integratorNam
   const double dtMin = 1e-5, dtMax = 0.05;
   ImGui::SliderScalar("dt (s)", ImGuiDataType_Double, &control.dt, &dtMin, &dtMax, "%.2e",
                       ImGuiSliderFlags_Logarithmic);
+  noteIfCut("dt (s)", control.cutLabels);
   ImGui::SliderInt("substeps", &control.substeps, 1, 200, "%d", ImGuiSliderFlags_AlwaysClamp);
+  noteIfCut("substeps", control.cutLabels);
   if (control.substeps < 1) control.substeps = 1;
 
   // Integrators by name; the loop swaps it in.
@@ -89,6 +105,7 @@ void drawControls(Simulation* sim, const std::vector<std::string>& integratorNam
     }
     ImGui::EndCombo();
   }
+  noteIfCut("integrator", control.cutLabels);
 
   // The warning a student should see before the run blows up.
   if (sim && stableDt >= 0.0 && control.dt > stableDt) {
@@ -117,6 +134,7 @@ void drawControls(Simulation* sim, const std::vector<std::string>& integratorNam
                               logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None)) {
         control.parameterEdit = RunControl::ParameterEdit{k, value};
       }
+      noteIfCut(label.c_str(), control.cutLabels);
     }
   }
 

@@ -33,6 +33,9 @@ struct RunControl {
     double value = 0.0;
   };
   std::optional<ParameterEdit> parameterEdit;
+  // Labels of the panel's last frame that did not fit its width (a --frames run reports
+  // them; the viewer tests expect none).
+  std::vector<std::string> cutLabels;
 };
 
 // An exercise the student has not written yet, from NotImplemented.

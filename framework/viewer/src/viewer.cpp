@@ -68,7 +68,7 @@ Framing frameScene(const Simulation* sim) {
   // box); the ground where the scene has one, else under the lowest point.
   const Bounds reach = sim->reach();
   const glm::vec3 lo = toGlm(reach.lo), hi = toGlm(reach.hi);
-  const float margin = 0.05f * std::max(glm::length(hi - lo), 0.1f);
+  const float margin = 0.03f * std::max(glm::length(hi - lo), 0.1f);
   f.lo = lo - glm::vec3(margin);
   f.hi = hi + glm::vec3(margin);
   if (sim->dimension == 2) f.lo.z = f.hi.z = 0.5f * (lo.z + hi.z);
@@ -307,11 +307,16 @@ int Viewer::run() {
   ImGui_ImplOpenGL3_Init("#version 330 core");
   imguiReady_ = true;
 
-  // Frame the region the scene can reach.
+  // Frame the region the scene can reach, in the part of the window between the HUD (top
+  // left, about 250 pixels wide) and the control panel (top right, about 390 wide but only as
+  // high as its sliders: 300 kept free of it), so neither
+  // hides the scene; a narrow window keeps at least its middle half.
   framing_ = frameScene(scene_.sim.get());
   int width = 0, height = 0;
   glfwGetFramebufferSize(window_, &width, &height);
-  camera_.frame(framing_.lo, framing_.hi, static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
+  const float w = static_cast<float>(std::max(width, 1));
+  const float freeLeft = std::min(250.0f / w, 0.25f), freeRight = std::max(1.0f - 300.0f / w, 0.75f);
+  camera_.frame(framing_.lo, framing_.hi, w / static_cast<float>(std::max(height, 1)), freeLeft, freeRight);
 
   using Clock = std::chrono::steady_clock;
   auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
@@ -370,6 +375,14 @@ int Viewer::run() {
     if (last) break;
   }
   if (options_.frames > 0) {
+    // What the last frame's panel showed of its labels (the viewer tests read this line).
+    if (control_.cutLabels.empty()) {
+      std::cout << "viewer: the panel's labels fit" << std::endl;
+    } else {
+      std::cout << "viewer: the panel cuts labels:";
+      for (const std::string& label : control_.cutLabels) std::cout << " \"" << label << "\"";
+      std::cout << std::endl;
+    }
     const viewer::FrameRate r = total_.frames > 0 ? total_.rate() : recent_.rate();
     std::cout << "viewer: " << std::fixed << std::setprecision(1) << r.fps << " frames/s, physics "
               << r.physicsMs << " ms + drawing " << r.drawMs << " ms a frame" << std::endl;

@@ -300,5 +300,34 @@ TEST_F(MatchesReference, SelfCollision) {
   }
 }
 
+// ---- Position-based and projective methods (exercises 2.11, 2.12) ---------------------------
+
+TEST_F(MatchesReference, XpbdDistanceConstraint) {
+  for (int t = 0; t < kTrials; ++t) {
+    const Vec3 x1 = vec3(-1, 1), x2 = vec3(-1, 1), p1 = x1 + vec3(-0.1, 0.1), p2 = x2 + vec3(-0.1, 0.1);
+    const double w1 = integer(0, 4) == 0 ? 0.0 : uniform(0.5, 10), w2 = uniform(0.5, 10), L0 = uniform(0.1, 2);
+    const double alphaTilde = integer(0, 3) == 0 ? 0.0 : uniform(1e-4, 10), gamma = integer(0, 1) ? 0.0 : uniform(0, 2);
+    const double lambda = uniform(-1, 1);
+    const DistanceCorrection c = xpbdDistanceConstraint(x1, x2, p1, p2, w1, w2, L0, alphaTilde, gamma, lambda);
+    const ref::DistanceCorrection r = ref::xpbdDistanceConstraint(x1, x2, p1, p2, w1, w2, L0, alphaTilde, gamma, lambda);
+    ASSERT_LT(relativeError(c.dx1, r.dx1) + relativeError(c.dx2, r.dx2), kTolerance)
+        << "the XPBD corrections are wrong for inverse masses " << w1 << " and " << w2 << ", alpha~ = " << alphaTilde
+        << ", gamma = " << gamma << ", lambda = " << lambda << " " << seedText();
+    ASSERT_NEAR(c.dlambda, r.dlambda, kTolerance * std::max(1.0, std::abs(r.dlambda)))
+        << "dlambda is wrong for alpha~ = " << alphaTilde << ", gamma = " << gamma << ", lambda = " << lambda << " "
+        << seedText();
+  }
+}
+
+TEST_F(MatchesReference, ProjectSpring) {
+  for (int t = 0; t < kTrials; ++t) {
+    const Vec3 x1 = vec3(-1, 1), x2 = vec3(-1, 1);
+    const double L0 = uniform(0.01, 2);
+    ASSERT_LT(relativeError(projectSpring(x1, x2, L0), ref::projectSpring(x1, x2, L0)), kTolerance)
+        << "the projected spring is wrong for a spring of length " << (x1 - x2).norm() << " and rest length " << L0
+        << " " << seedText();
+  }
+}
+
 }  // namespace
 }  // namespace springlab::net

@@ -89,7 +89,12 @@ class ImplicitEulerBlocks final : public Integrator {
 
 }  // namespace
 
+void registerXpbd(Registry& registry);                // xpbd.cpp
+void registerProjectiveDynamics(Registry& registry);  // projective_dynamics.cpp
+
 void registerIntegrators(Registry& registry) {
+  registerXpbd(registry);
+  registerProjectiveDynamics(registry);
   registry.addIntegrator("implicit_euler", [] { return std::make_unique<ImplicitEuler>(); });
   registry.addIntegrator("implicit_euler_blocks", [] { return std::make_unique<ImplicitEulerBlocks>(); });
 }

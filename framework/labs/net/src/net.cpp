@@ -47,12 +47,17 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
 // Both loops below run once per spring per step: `flatten` inlines the exercises they call
 // where the compiler sees them (the reference is built as one unit). Springs run in batches
 // on several threads (springlab/spring_batches.hpp); the sums do not depend on the count.
+std::vector<std::string> Net::forceTermNames() const {
+  return {"spring forces (exercise 2.2, springDamperForce)", "gravity and air friction",
+          "wind (exercises 2.3 and 2.4, vertexNormals and windForce)"};
+}
+
 [[gnu::flatten]] void Net::accumulateForces(const State& s, std::vector<Vec3>& f) {
   // Springs: equal and opposite on their ends (exercise 2.2).
   if (!batches_.fits(springs.size())) batches_ = SpringBatches(springs);
   // A grid lists up to six springs of one first mass in a row: their forces on it add up in
   // a register and land once, instead of six dependent read-add-writes of f[mass1].
-  batches_.forEachBatch([&](int first, int last) {
+  if (forceTermOn(kSprings)) batches_.forEachBatch([&](int first, int last) {
     int pending = -1;  // the first mass whose sum is held in `sum`
     Vec3 sum = Vec3::Zero();
     for (int k = first; k < last; ++k) {
@@ -71,14 +76,16 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
   });
   // Gravity and air friction on each mass.
   const int n = numOfMasses();
+  if (forceTermOn(kGravityAndAir)) {
 #pragma omp parallel for schedule(static) if (n > kParallelMasses)
-  for (int i = 0; i < n; ++i) {
-    f[i] += masses[i].m * (gravitation - settings.airFriction * s.vel[i]);
+    for (int i = 0; i < n; ++i) {
+      f[i] += masses[i].m * (gravitation - settings.airFriction * s.vel[i]);
+    }
   }
   // Wind on the surface, through each mass's normal and area (exercises 2.3 and 2.4).
   const Wind& w = settings.wind;
   const bool windActs = w.model == WindModel::Relative ? w.drag > 0.0 : w.strength > 0.0;
-  if (windActs && !triangles.empty()) {
+  if (windActs && !triangles.empty() && forceTermOn(kWind)) {
     {
       const PhaseProfile::Scope phase(profile, Phase::kNormals);
       vertexNormals(s.pos, triangles, normals_, areas_);
@@ -145,18 +152,21 @@ void Net::afterStep(double dt) {
     }
   }
 
-  // Colliders last, so no mass ends a step inside one (exercise 2.5).
+  // Colliders last, so no mass ends a step inside one (exercise 2.5). They act
+  // contactOffset further out than drawn: the cloth's flat triangles between masses on a
+  // sphere would otherwise cut into it.
   const PhaseProfile::Scope collisions(profile, Phase::kCollisions);
+  const double offset = settings.contactOffset;
   for (int i = 0; i < numOfMasses(); ++i) {
     if (inverseMass_[static_cast<std::size_t>(i)] == 0.0) continue;
     for (const SphereCollider& sphere : spheres_) {
-      const Contact c = sphereContact(state.pos[i], sphere.center, sphere.radius);
+      const Contact c = sphereContact(state.pos[i], sphere.center, sphere.radius + offset);
       if (!c.touching) continue;
       state.pos[i] = c.pos;
       state.vel[i] = contactVelocity(state.vel[i], sphere.velocity, c.normal, settings.absorption, settings.friction);
     }
     for (const PlaneCollider& plane : settings.planes) {
-      const Contact c = planeContact(state.pos[i], plane.point, plane.normal);
+      const Contact c = planeContact(state.pos[i], plane.point + offset * plane.normal, plane.normal);
       if (!c.touching) continue;
       state.pos[i] = c.pos;
       state.vel[i] = contactVelocity(state.vel[i], Vec3::Zero(), c.normal, settings.absorption, settings.friction);

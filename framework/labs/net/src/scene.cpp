@@ -1,4 +1,5 @@
 // Reading a net scene (given). Every key is required; the errors name the file and key.
+#include <algorithm>
 #include <cmath>
 
 #include <springlab/net/net.hpp>
@@ -106,6 +107,16 @@ NetParameters readNetParameters(SceneReader& r, const SceneSettings& settings) {
     collider.normal = unitVector(plane, "normal");
     plane.rejectUnknownKeys();
     p.planes.push_back(collider);
+  }
+  // Optional: how far out of their surface the colliders hold the masses (m). The flat
+  // triangles between masses resting on a sphere of radius R dip into it by about h^2 / (4 R)
+  // (h the grid spacing), more where cells stretch: by default a quarter of the spacing, which
+  // keeps the drawn cloth outside any sphere down to about one spacing in radius.
+  if (c.has("contact_offset")) {
+    p.contactOffset = c.nonNegative("contact_offset");
+  } else {
+    const double spacing = std::max(p.width / (p.resolution - 1), p.height / std::max(gridRows(p) - 1, 1));
+    p.contactOffset = 0.25 * spacing;
   }
   c.rejectUnknownKeys();
 

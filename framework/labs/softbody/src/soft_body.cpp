@@ -42,7 +42,7 @@ double SoftBody::volume(const State& s) const {
 double SoftBody::gas(double time) const { return inflatedGas(p_.gas, time, p_.inflationTime); }
 double SoftBody::gas() const { return gas(state.time); }
 
-double SoftBody::pressure(const State& s) const { return p_.gas > 0.0 ? gasPressure(gas(s.time), volume(s)) : 0.0; }
+double SoftBody::pressure(const State& s) const { return p_.gas != 0.0 ? gasPressure(gas(s.time), volume(s)) : 0.0; }
 
 Penetration SoftBody::penetration(const Vec3& x, const Obstacle& o) const {
   switch (o.type) {
@@ -54,21 +54,32 @@ Penetration SoftBody::penetration(const Vec3& x, const Obstacle& o) const {
   return {};
 }
 
+std::vector<std::string> SoftBody::forceTermNames() const {
+  return {"spring forces (exercise 3.1, addSpringForces)", "gravity and air friction",
+          "gas pressure (exercises 3.3 to 3.5: the volume, addPressureForces, the gas pumped in)",
+          "wind (exercise 3.9, addWindForces)", "penalty contact (exercises 3.6 and 3.7)"};
+}
+
 void SoftBody::accumulateForces(const State& s, std::vector<Vec3>& f) {
   // Springs along the surface and across it (exercise 3.1).
-  addSpringForces(s.pos, s.vel, springs, f);
+  if (forceTermOn(kSprings)) addSpringForces(s.pos, s.vel, springs, f);
 
   // Weight and air drag on each mass.
-  for (int i = 0; i < numOfMasses(); ++i) f[i] += masses[i].m * gravitation - p_.airFriction * s.vel[i];
+  if (forceTermOn(kGravityAndAir)) {
+    for (int i = 0; i < numOfMasses(); ++i) f[i] += masses[i].m * gravitation - p_.airFriction * s.vel[i];
+  }
 
-  // The gas pushes every face outward (exercises 3.3 to 3.5).
-  if (p_.gas > 0.0) addPressureForces(s.pos, triangles, p_.mesh.segments, pressure(s), f);
+  // The gas pushes every face outward (exercises 3.3 to 3.5); a non-finite amount of gas is
+  // not skipped, so the blow-up check can name it.
+  if (p_.gas != 0.0 && forceTermOn(kPressure)) addPressureForces(s.pos, triangles, p_.mesh.segments, pressure(s), f);
 
   // Wind on the faces (exercise 3.9).
-  if (p_.windDrag > 0.0) addWindForces(s.pos, s.vel, triangles, p_.mesh.segments, p_.wind, p_.windDrag, f);
+  if (p_.windDrag > 0.0 && forceTermOn(kWind)) {
+    addWindForces(s.pos, s.vel, triangles, p_.mesh.segments, p_.wind, p_.windDrag, f);
+  }
 
   // Penalty contact with every obstacle (exercises 3.6 and 3.7); projection acts in afterStep.
-  if (p_.contactMethod == ContactMethod::Penalty) {
+  if (p_.contactMethod == ContactMethod::Penalty && forceTermOn(kContact)) {
     const PhaseProfile::Scope phase(profile, Phase::kCollisions);
     for (int i = 0; i < numOfMasses(); ++i) {
       for (const Obstacle& o : p_.obstacles) {

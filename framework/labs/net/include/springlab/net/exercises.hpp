@@ -83,6 +83,7 @@ struct NetParameters {
   std::vector<PlaneCollider> planes;
   double absorption = 1.0;        // share of the approaching normal velocity a contact removes
   double friction = 0.0;          // Coulomb friction coefficient of the colliders
+  double contactOffset = 0.0;     // m, colliders hold masses this far out of their surface
   bool stretchLimiting = true;
   double maxStretch = 0.1;        // springs stay below (1 + maxStretch) L0
   bool selfCollision = false;
@@ -195,5 +196,34 @@ std::vector<std::pair<int, int>> closePairs(const std::vector<Vec3>& pos, double
 // in proportion to their inverse masses, and remove their approaching relative velocity
 // along that line so that momentum is kept. Nothing when w1 + w2 == 0 or they are apart.
 void separatePair(Vec3& x1, Vec3& x2, Vec3& v1, Vec3& v2, double w1, double w2, double thickness);
+
+// ==== Position-based and projective methods (XPBD, projective dynamics) ====================
+// The framework gives both loops (framework/labs/net/src/xpbd.cpp, projective_dynamics.cpp):
+// predicted positions, the iterations, the global solve and the velocity update. You write the
+// physics of one spring in each. They run as the integrators "xpbd" and "projective_dynamics"
+// on every scene (handouts/02_net.md, "Position-based and projective methods").
+
+// ---- Exercise 2.11: XPBD distance constraint ------------------------------------------
+// One projection of the constraint C = |x1 - x2| - L0 of a spring, with e = (x1 - x2) / l:
+//   dlambda = (-C - alphaTilde lambda - gamma e.((x1 - prev1) - (x2 - prev2)))
+//             / ((1 + gamma) (w1 + w2) + alphaTilde)
+//   dx1 = w1 dlambda e,  dx2 = -w2 dlambda e
+// w1, w2 inverse masses (0: pinned); alphaTilde = compliance / h^2 (compliance = 1/k);
+// gamma = alphaTilde beta~ / h, the constraint damping (0: none); lambda the multiplier so far
+// in this substep; prev1, prev2 the positions at the start of the substep. All zero when
+// l == 0 or the denominator is 0.
+struct DistanceCorrection {
+  Vec3 dx1 = Vec3::Zero();  // m, add to x1
+  Vec3 dx2 = Vec3::Zero();  // m, add to x2
+  double dlambda = 0.0;     // add to the constraint's lambda (N s^2)
+};
+DistanceCorrection xpbdDistanceConstraint(const Vec3& x1, const Vec3& x2, const Vec3& prev1, const Vec3& prev2,
+                                          double w1, double w2, double restLength, double alphaTilde, double gamma,
+                                          double lambda);
+
+// ---- Exercise 2.12: projective dynamics, the local step --------------------------------
+// The spring's rest shape nearest to its current one: d = L0 (x1 - x2) / |x1 - x2|
+// (zero when x1 == x2). The global step then solves (M/h^2 + L) x = M y / h^2 + sum k A^T d.
+Vec3 projectSpring(const Vec3& x1, const Vec3& x2, double restLength);
 
 }  // namespace springlab::net

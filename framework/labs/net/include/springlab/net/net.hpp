@@ -30,6 +30,9 @@ class Net final : public Simulation {
 
   // Physics.
   bool addForceJacobian(const State& s, ForceJacobian& J) override;
+  // The terms of accumulateForces, in the order of ForceTerm (the blow-up check names one).
+  enum ForceTerm { kSprings, kGravityAndAir, kWind };
+  std::vector<std::string> forceTermNames() const override;
 
   // Front end.
   std::string kind() const override { return "net"; }

@@ -14,6 +14,10 @@ class Rope final : public RopeSimulation {
  public:
   Rope(int dimension, const RopeParameters& parameters);
 
+  // The terms of accumulateForces, in the order of ForceTerm (the blow-up check names one).
+  enum ForceTerm { kSprings, kGravityAndAir, kGround };
+  std::vector<std::string> forceTermNames() const override;
+
  protected:
   void accumulateForces(const State& s, std::vector<Vec3>& f) override;
   void afterStep(double dt) override;

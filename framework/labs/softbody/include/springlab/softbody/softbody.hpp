@@ -63,6 +63,9 @@ class SoftBody final : public Simulation {
 
   // Physics.
   double angularFrequencyBound() const override;
+  // The terms of accumulateForces, in the order of ForceTerm (the blow-up check names one).
+  enum ForceTerm { kSprings, kGravityAndAir, kPressure, kWind, kContact };
+  std::vector<std::string> forceTermNames() const override;
 
   // Front end.
   std::string kind() const override { return "soft body"; }

@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+"""Each handout's command examples run as written.
+
+    check_handout_commands.py ROOT BUILD_DIR [--list]
+
+Reads handouts/0*.md and collects every `./springlab ...` command a student is told to type:
+the lines of indented and fenced (```sh, ```bash) code blocks, and inline code spans. Runs
+each from ROOT, as the student would, with the build in BUILD_DIR (SPRINGLAB_BUILD_DIR) and no
+display (`run` then renders headless under Xvfb). In a tree with solutions/ (the instructor's,
+whose labs/ is the untouched skeleton) each runs with `--reference`, so it runs a finished lab;
+in a student tree it runs as written, and exit 3 naming a missing exercise counts as run.
+
+A command passes when it exits 0 (or 3 as above, or the exit EXPECTED_EXIT gives an example that
+shows a failure on purpose), within its time cap, and a file it names with --out exists after a
+clean exit. Commands too costly for a test run, and spans that only name a
+command or hold a placeholder, are SKIPPED with their reason (printed; listed in SKIP below):
+never silently. --list prints what would run and what is skipped, and runs nothing.
+"""
+import os
+import pathlib
+import re
+import shlex
+import subprocess
+import sys
+import time
+
+# Commands left out on purpose: (regex on the command as written, reason).
+SKIP = [
+    (r"^\./springlab bench\b", "times the reference for about 3 minutes (Google Benchmark); "
+                               "bench.springlab_bench.report_from_one_quick_run covers it"),
+]
+# Commands whose point is to fail in a known way: (regex, exit code, why the handout shows it).
+EXPECTED_EXIT = [
+    (r"^\./springlab sim scenes/net_thesis\.json .*--integrator explicit_euler", 4,
+     "section 5: explicit Euler blows up on the thesis' cloth at dt = 1/60 s (exit 4, blow-up)"),
+]
+TIME_CAP_S = 240  # per command: a `run` renders 240 frames; a `check` runs a lab's tests
+
+
+def commands(handout):
+    """(line, command) for every `./springlab ...` the handout shows."""
+    text = handout.read_text()
+    lines = text.splitlines()
+    found = []
+    in_fence, fence_runs = False, False
+    for number, line in enumerate(lines, 1):
+        stripped = line.strip()
+        if stripped.startswith("```"):
+            if not in_fence:
+                in_fence, fence_runs = True, stripped[3:].strip() in ("", "sh", "bash", "shell", "console")
+            else:
+                in_fence = False
+            continue
+        code = None
+        if in_fence and fence_runs:
+            code = stripped.removeprefix("$ ")
+        elif not in_fence and line.startswith("    ") and stripped.startswith("./springlab"):
+            code = stripped
+        if code and code.startswith("./springlab"):
+            found.append((number, code.split("  #")[0].split(" #")[0].strip()))
+    # Inline spans, which may wrap over a line break.
+    for m in re.finditer(r"`(\./springlab[^`]*)`", text):
+        number = text.count("\n", 0, m.start()) + 1
+        found.append((number, " ".join(m.group(1).split())))
+    return sorted(set(found))
+
+
+def why_skipped(command):
+    for pattern, reason in SKIP:
+        if re.search(pattern, command):
+            return reason
+    words = shlex.split(command)
+    if len(words) < 3:
+        return "names the command only, with nothing to run it on"
+    if re.search(r"[<\[]", command) or any(re.fullmatch(r"[A-Z][A-Z_]*", w) for w in words):
+        return "holds a placeholder (<...>, [...] or a name in capitals such as DT)"
+    return None
+
+
+def main():
+    root, build = pathlib.Path(sys.argv[1]).resolve(), pathlib.Path(sys.argv[2]).resolve()
+    only_list = "--list" in sys.argv[3:]
+    instructor = (root / "solutions").is_dir()
+    env = dict(os.environ, SPRINGLAB_BUILD_DIR=str(build))
+    env.pop("DISPLAY", None)
+    env.pop("WAYLAND_DISPLAY", None)
+    failures, ran, skipped = [], 0, 0
+    seen = {}  # command -> where it ran first
+    for handout in sorted((root / "handouts").glob("0*.md")):
+        for number, command in commands(handout):
+            where = f"{handout.name}:{number}"
+            if command in seen:
+                print(f"same as {seen[command]}: {command}")
+                continue
+            seen[command] = where
+            reason = why_skipped(command)
+            if reason:
+                skipped += 1
+                print(f"SKIPPED {where}: {command}\n        ({reason})")
+                continue
+            words = shlex.split(command)
+            if instructor and words[1] in ("run", "sim", "check", "chart", "advise"):
+                words.append("--reference")
+            if only_list:
+                print(f"WOULD RUN {where}: {' '.join(words)}")
+                continue
+            out = words[words.index("--out") + 1] if "--out" in words[:-1] else None
+            if out:
+                (root / out).unlink(missing_ok=True)
+            start = time.monotonic()
+            try:
+                p = subprocess.run(words, cwd=root, env=env, capture_output=True, text=True, timeout=TIME_CAP_S)
+                code, output = p.returncode, p.stdout + p.stderr
+            except subprocess.TimeoutExpired as e:
+                code, output = None, f"no exit within {TIME_CAP_S} s\n{e.stdout or ''}{e.stderr or ''}"
+            seconds = time.monotonic() - start
+            ran += 1
+            expected = next(((c, why) for pattern, c, why in EXPECTED_EXIT if re.search(pattern, command)), (0, ""))
+            missing_exercise = code == 3 and not instructor and "not implemented" in output
+            ok = code == expected[0] or missing_exercise
+            if expected[0] != 0:
+                print(f"        (expects exit {expected[0]}: {expected[1]})")
+            if ok and out and code == 0 and not (root / out).exists():
+                ok, output = False, output + f"\n{out} was not written"
+            print(f"{'ok' if ok else 'FAILED'} {where} ({seconds:.1f} s, exit {code}): {' '.join(words)}")
+            if not ok:
+                failures.append(f"{where}: {' '.join(words)}: exit {code}\n{output[-3000:]}")
+    for f in failures:
+        print("FAIL:", f)
+    print(f"handout commands: {ran} ran, {skipped} skipped, {len(failures)} failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
