@@ -75,7 +75,8 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
   });
   // Gravity and air friction on each mass.
   const int n = numOfMasses();
-#pragma omp parallel for schedule(static) if (n > kParallelMasses)
+  const int threads = n > kParallelMasses ? threadBudget() : 1;
+#pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
   for (int i = 0; i < n; ++i) {
     f[i] += masses[i].m * (gravitation - settings.airFriction * s.vel[i]);
   }
@@ -101,7 +102,8 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
   // instructions in this loop).
   const int count = static_cast<int>(springs.size());
   LoopExceptions exceptions;
-#pragma omp parallel if (count > kParallelSprings)
+  const int budget = count > kParallelSprings ? threadBudget() : 1;
+#pragma omp parallel if (budget > 1) num_threads(budget)
   {
     int first = 0, last = count;
 #ifdef _OPENMP
