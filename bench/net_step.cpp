@@ -108,3 +108,26 @@ BENCHMARK(NetFabricDrape)
 
 }  // namespace
 }  // namespace springlab::bench
+
+// ---- The fabric's implicit step by preconditioner (issue 16) ----------------------------
+namespace springlab::bench {
+namespace {
+
+//   NetImplicitFabric/r/preconditioner: implicit Euler on the fabric at dt = 1/120 s, CG to
+//   1e-6 with block Jacobi (0) or two-level smoothed aggregation (1).
+void NetImplicitFabric(benchmark::State& bench) {
+  const int r = static_cast<int>(bench.range(0));
+  useThreads(1);
+  net::Net sim(3, cloth(r, 1));
+  sim.solver.preconditioner = bench.range(1) == 0 ? "block_jacobi" : "smoothed_aggregation";
+  sim.setIntegrator(registry().makeIntegrator("implicit_euler"));
+  timeSteps(bench, sim, 1.0 / 120.0, 30);
+}
+BENCHMARK(NetImplicitFabric)
+    ->ArgNames({"r", "preconditioner"})
+    ->ArgsProduct({{32, 64, 128}, {0, 1}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace springlab::bench

@@ -121,6 +121,21 @@ SceneSettings Registry::readSettings(SceneReader& reader) const {
   }
   s.gravity = reader.vec3("gravity");
   if (s.dimension == 2 && s.gravity.z() != 0.0) reader.fail("gravity", "must have z = 0 in a 2D scene");
+  // The implicit integrators' accuracy, when the scene chooses it.
+  if (reader.has("solver")) {
+    SceneReader solver = reader.object("solver");
+    if (solver.has("tolerance")) s.solver.tolerance = solver.positive("tolerance");
+    if (solver.has("preconditioner")) {
+      s.solver.preconditioner = solver.string("preconditioner");
+      if (s.solver.preconditioner != "auto" && s.solver.preconditioner != "block_jacobi" &&
+          s.solver.preconditioner != "smoothed_aggregation") {
+        solver.fail("preconditioner", "must be \"auto\", \"block_jacobi\" or \"smoothed_aggregation\"");
+      }
+    }
+    if (solver.has("block_sweeps")) s.solver.blockSweeps = solver.integer("block_sweeps", 1);
+    if (solver.has("block_tolerance")) s.solver.blockTolerance = solver.nonNegative("block_tolerance");
+    solver.rejectUnknownKeys();
+  }
   return s;
 }
 
@@ -152,6 +167,7 @@ LoadedScene Registry::loadScene(SceneReader& reader) const {
   section.rejectUnknownKeys();
   readIntegratorOptions(reader, *loaded.sim);
   reader.rejectUnknownKeys();
+  loaded.sim->solver = s.solver;
   loaded.sim->setIntegrator(makeIntegrator(s.integrator));
   return loaded;
 }

@@ -13,7 +13,8 @@ void SymplecticEuler::step(Simulation& sim, double dt) {
   // Each mass on its own: split over threads for large systems.
   State& s = sim.state;
   const int n = sim.numOfMasses();
-#pragma omp parallel for schedule(static) if (n > kParallelMasses)
+  const int threads = n > kParallelMasses ? threadBudget() : 1;
+#pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
   for (int i = 0; i < n; ++i) {
     s.vel[i] += sim.force[i] * (sim.inverseMass(i) * dt);
     s.pos[i] += s.vel[i] * dt;

@@ -11,6 +11,7 @@
 #include "springlab/integrator.hpp"
 #include "springlab/scene_document.hpp"
 #include "springlab/scene_reader.hpp"
+#include "springlab/solver_settings.hpp"
 #include "springlab/simulation.hpp"
 
 namespace springlab {
@@ -26,6 +27,7 @@ struct SceneSettings {
   int substeps = 1;         // integrator steps per displayed frame
   std::string integrator;   // registered integrator name
   Vec3 gravity = Vec3::Zero();  // m/s^2
+  SolverSettings solver;    // optional "solver" section: the implicit integrators' accuracy
 };
 
 struct LoadedScene {

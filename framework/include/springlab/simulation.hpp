@@ -27,6 +27,7 @@
 #include "springlab/parameter.hpp"
 #include "springlab/phase_profile.hpp"
 #include "springlab/shape.hpp"
+#include "springlab/solver_settings.hpp"
 #include "springlab/spring.hpp"
 #include "springlab/state.hpp"
 
@@ -99,6 +100,7 @@ class Simulation : public SceneFrontEnd {
   State state;                   // positions [n], velocities [n], time
   std::vector<Vec3> force;       // [n] N, forces of the last solve()
   Stats stats;
+  SolverSettings solver;         // how hard implicit integrators solve (scene's "solver")
   PhaseProfile profile;          // where the steps' time goes, when enabled (sim --profile, benchmarks)
 
   int numOfMasses() const { return static_cast<int>(masses.size()); }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <springlab/loop_exceptions.hpp>
+#include <springlab/thread_budget.hpp>
 
 #include "springlab/spring.hpp"
 
@@ -42,8 +43,10 @@ class SpringBatches {
     const int batches = count();
     // perBatch calls exercises, which may throw: carried out of the parallel region.
     LoopExceptions exceptions;
+    // Fewer threads, down to a serial loop, while other processes keep the cores busy.
+    const int threads = parallel_ ? threadBudget() : 1;
     for (int parity = 0; parity < 2; ++parity) {
-#pragma omp parallel for schedule(static) if (parallel_)
+#pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
       for (int b = parity; b < batches; b += 2) exceptions.run([&] { perBatch(begin(b), end(b)); });
       exceptions.rethrow();
     }

@@ -7,7 +7,8 @@ namespace springlab {
 
 void BlockJacobiCG::precondition(const Eigen::VectorXd& in, Eigen::VectorXd& out) const {
   const int blocks = static_cast<int>(inverseDiagonal_.size());
-#pragma omp parallel for schedule(static) if (blocks > kParallelMasses)
+  const int threads = blocks > kParallelMasses ? threadBudget() : 1;
+#pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
   for (int b = 0; b < blocks; ++b) out.segment<3>(3 * b) = inverseDiagonal_[static_cast<std::size_t>(b)] * in.segment<3>(3 * b);
 }
 

@@ -68,7 +68,8 @@ void BlockSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   // The diagonal blocks, each row on its own; then the pairs, each adding to both its rows.
   y.resize(b_.size());
   const int blocks = static_cast<int>(diagonal_.size());
-#pragma omp parallel for schedule(static) if (blocks > kParallelMasses)
+  const int threads = blocks > kParallelMasses ? threadBudget() : 1;
+#pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
   for (int r = 0; r < blocks; ++r) y.segment<3>(3 * r) = diagonal_[static_cast<std::size_t>(r)] * x.segment<3>(3 * r);
   // Consecutive pairs mostly share their first row: its sum stays in a register until the
   // row changes (as in the cloth's force pass).

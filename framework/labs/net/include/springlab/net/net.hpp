@@ -9,6 +9,7 @@
 
 #include <springlab/integrator.hpp>
 #include <springlab/net/exercises.hpp>
+#include <springlab/net/tethers.hpp>
 #include <springlab/registry.hpp>
 #include <springlab/scene_reader.hpp>
 #include <springlab/scene_shapes.hpp>
@@ -68,6 +69,7 @@ class Net final : public Simulation {
   std::vector<Vec3> normals_;                      // [n] scratch for the wind
   std::vector<double> areas_;                      // [n] m^2
   std::vector<double> inverseMass_;                // [n] scratch for stretch limiting
+  Tethers tethers_;                                // stretch limit: distances from the pins
   Vec3 pinnedCentre_ = Vec3::Zero();               // m, centre of the pinned masses at the start
 };
 

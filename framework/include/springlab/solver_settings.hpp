@@ -1,0 +1,26 @@
+#pragma once
+// How hard the implicit integrators solve their linear systems: a scene's optional "solver"
+// section ({"tolerance": 1e-6, "preconditioner": "block_jacobi", "block_sweeps": 1,
+// "block_tolerance": 0}), kept by the
+// Simulation so any integrator can read it.
+#include <string>
+
+namespace springlab {
+
+struct SolverSettings {
+  // implicit_euler: conjugate gradients stop at this residual relative to |b|.
+  double tolerance = 1e-6;
+  // implicit_euler: CG's preconditioner: "block_jacobi" (each mass's 3x3 block),
+  // "smoothed_aggregation" (two-level AMG: 14 iterations at r = 32 and 64 on the fabric, but
+  // its set-up each step still costs more than block Jacobi's extra iterations), or "auto":
+  // block Jacobi until a step needs more than 40 iterations, then smoothed aggregation.
+  std::string preconditioner = "block_jacobi";
+  // implicit_euler_blocks: block-Jacobi sweeps of the implicit system per step, at most. One
+  // sweep (the cloth thesis' method) solves each mass against its neighbours' old velocities.
+  int blockSweeps = 1;
+  // implicit_euler_blocks: stop sweeping when the residual relative to |b| is below this
+  // (0: always blockSweeps sweeps).
+  double blockTolerance = 0.0;
+};
+
+}  // namespace springlab
