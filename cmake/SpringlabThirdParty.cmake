@@ -12,10 +12,12 @@ option(SPRINGLAB_VENDORED "Use the copies in third_party/ even where the system 
 set(SPRINGLAB_THIRD_PARTY ${CMAKE_CURRENT_LIST_DIR}/../third_party)
 get_filename_component(SPRINGLAB_THIRD_PARTY ${SPRINGLAB_THIRD_PARTY} ABSOLUTE)
 
-# The first line of third_party/<dir>/VERSION up to its first parenthesis: "Dear ImGui 1.86".
+# "vendored <version>" for the summary; the version is the first line of third_party/<dir>/VERSION
+# up to " (", its last word: that file is the one record of what was vendored.
 function(springlab_vendored_version dir out)
   file(STRINGS ${SPRINGLAB_THIRD_PARTY}/${dir}/VERSION line LIMIT_COUNT 1)
   string(REGEX REPLACE " *\\(.*" "" line "${line}")
+  string(REGEX REPLACE "^.* " "" line "${line}")  # its last word: the version
   set(${out} "vendored ${line}" PARENT_SCOPE)
 endfunction()
 
