@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
 """A student's `int n = v.size();` warns but never stops their build, and grades the same.
+(The same for `for (int k = 0; k < v.size(); ++k)`.)
 
 Students' laptops (issue 14): -Wconversion stays on for the exercises so that students see
 the narrowing, but their build (even with SPRINGLAB_WARNINGS_AS_ERRORS, as in CI) must not
@@ -21,9 +22,11 @@ import sys
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXERCISE = "build_rope.cpp"
 ANCHOR = "  return rope;\n  // END EXERCISE 1.7"
+# `n` is taken in that function (and -Wshadow is an error in CI), so the count is `count`.
 NARROWING = ("  const std::vector<Spring>& v = rope.springs;\n"
-             "  int n = v.size();  // narrowing from size_t: -Wconversion warns\n"
-             "  (void)n;\n")
+             "  int count = v.size();  // as `int n = v.size();`: narrowing from size_t (-Wconversion)\n"
+             "  for (int k = 0; k < v.size(); ++k) --count;  // int against size_t (-Wsign-compare)\n"
+             "  (void)count;\n")
 
 
 def fail(message):
