@@ -25,7 +25,8 @@ set(Eigen3_DIR ${host_headers} CACHE PATH "")
 set(nlohmann_json_DIR ${host_headers} CACHE PATH "")
 set(CLI11_DIR ${host_headers} CACHE PATH "")
 
-# One .exe per program with nothing to ship beside it: libgcc, libstdc++ and winpthread linked in.
+# libgcc, libstdc++ and winpthread linked into each .exe; OpenMP stays a DLL (libgomp-1.dll:
+# FindOpenMP names its import library), which `portability mingw` puts on WINEPATH.
 set(CMAKE_EXE_LINKER_FLAGS_INIT "-static -static-libgcc -static-libstdc++")
 # ctest (and gtest_discover_tests) run the programs through wine.
 find_program(SPRINGLAB_WINE NAMES wine64 wine PATHS /usr/lib/wine NO_CMAKE_FIND_ROOT_PATH)
