@@ -7,6 +7,15 @@
 // A test that crashes, hangs, calls exit() or prints fake GoogleTest output never writes a
 // line with the nonce, and the grader scores it 0.
 #include <gtest/gtest.h>
+
+#ifdef _WIN32
+// Windows (the MinGW-w64 build of `./springlab portability mingw`): the grader and its result
+// channel are Linux-only (pipes, unsetenv), so there this is GoogleTest's usual main.
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
+#else
 #include <unistd.h>
 
 #include <cstdlib>
@@ -84,3 +93,4 @@ int main(int argc, char** argv) {
   ::close(out);
   return code;
 }
+#endif  // _WIN32
