@@ -1,0 +1,1 @@
+include(/usr/share/eigen3/cmake/Eigen3ConfigVersion.cmake)
