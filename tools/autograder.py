@@ -8,7 +8,8 @@ this instructor tree under springlab/ (Gradescope unzips it into /autograder/sou
 setup.sh installs the Debian packages, builds the grading cache once (framework, reference
 oracle, test objects) and makes solutions/ and the hidden tests unreadable to other users.
 run_autograder grades /autograder/submission with tools/submission.py as root, which compiles
-and runs the student's code as the unprivileged user `nobody`, and always leaves
+the student's code as `nobody`, runs it in bubblewrap as a user of its own and takes every
+verdict from a judge program that runs no student code, and always leaves
 /autograder/results/results.json: when the grader itself fails, a zero score that says why.
 (The bundle itself: tools/springlab_grader/gradescope.py.)
 """

@@ -11,9 +11,10 @@ How: a cache build of the framework, the reference "oracle" and the grading test
 each lab, only the student's exercise files (the .cpp files of the released labs/<dir>/) are
 compiled (in a sandbox, as `nobody` when root), against the framework's headers, and linked
 with the lab's given objects (framework/labs/<name>/, compiled once) and the cached objects
-into that lab's grading program; any other file of the submission is ignored and the report
-says so; then every grading test runs
-in its own sandboxed process.
+into a worker program per exercise file; any other file of the submission is ignored and the
+report says so. Every grading test then runs twice: in the worker, inside bubblewrap, which
+records what the student's functions return, and in the judge, a program without student
+code that replays those records and decides (tests/support/call_trace.hpp).
 
 Points follow the exercise: each exercise file is linked into its own grading program with
 the reference's other exercise files, and only its exercises' tests run there, so a bug in one

@@ -60,6 +60,26 @@ def main():
     code, results = run_autograder(root, f"--cache {args.cache} --no-build --seed 7 --quiet")
     if code != 0 or results is None or results["score"] != results["max_score"] or not results["tests"]:
         problems.append(f"grading the reference through run_autograder: exit {code}, results {str(results)[:300]}")
+    # Hostile submissions through the bundle score exactly their honest control (the
+    # reference with the attacked exercise not done): the verdict is the judge's there too.
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+    import sabotage  # noqa: PLC0415
+    made = work / "hostile"
+    sabotage.make(made, [], args.cache)
+    outcomes = {}
+    for student in ("_control", "code_before_main", "reads_own_memory", "overrides_gtest"):
+        shutil.rmtree(root / "submission", ignore_errors=True)
+        shutil.copytree(made / student, root / "submission")
+        code, results = run_autograder(root, f"--cache {args.cache} --no-build --seed 7 --quiet --lab "
+                                             f"{sabotage.TARGET_LAB}")
+        if code != 0 or results is None:
+            problems.append(f"grading {student} through run_autograder: exit {code}, results {str(results)[:300]}")
+            continue
+        outcomes[student] = {t["name"]: t["status"] for t in results["tests"]}
+    for student, got in outcomes.items():
+        if student != "_control" and got != outcomes.get("_control"):
+            changed = sorted(n for n in got if got[n] != outcomes.get("_control", {}).get(n))
+            problems.append(f"{student} through the bundle differs from its control in {changed[:4]}")
     # The grader cannot run at all: still a results.json, with a zero and the reason.
     code, results = run_autograder(root, "--cache /nonexistent-springlab-cache --no-build")
     if code != 0 or results is None or results["score"] != 0 or "could not grade" not in results["output"]:

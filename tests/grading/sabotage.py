@@ -6,9 +6,10 @@ below) replaced by something hostile: a crash, a hang, a forged result, a call o
 reference, ... Everything else is honest. The class is graded with `grade-all`, and each
 submission must get exactly the points of its honest parts: test by test, the outcome of the
 "control" submission, which is solutions/ with the target file taken from the skeleton (the
-exercise not done). A few have other expectations (an empty submission scores 0; a zip that tries to escape keeps its honest
-files). Any further lab is graded in every submission too and must score what the
-reference scores.
+exercise not done). A few have other expectations (an empty submission scores 0; a zip that
+tries to escape keeps its honest files). The class is graded together (`grade-all --lab
+rope`, two at a time), so an attack on the grader's caches or on other students' processes
+shows as another student's changed outcome.
 
     tests/grading/sabotage.py --cache build --work build/tests/sabotage      (run by ctest)
 """
@@ -125,6 +126,149 @@ PhasePoint explicitEulerStep(const PhasePoint& s, const Vec3& a, double dt);
 """, """
   const auto answer = springlab::rope_reference::explicitEulerStep({s.pos, s.vel}, a, dt);
   return {answer.pos, answer.vel};""", "control"),
+    # ---- attacks on the verdict and on other students (issue 13): each scores the control ----
+    # A static initialiser runs before main(): it forges passing reports on every descriptor
+    # and at exit, and turns exit codes into 0; the answers stay wrong.
+    "code_before_main": ("<cstdlib>\n#include <string>\n#include <unistd.h>", """
+namespace {
+void forge() {
+  const std::string forged = "{\\"tests\\":[{\\"name\\":\\"ExplicitEuler.UpdatesFromTheOldState\\","
+                             "\\"status\\":\\"passed\\",\\"failures\\":[]}],\\"trace_calls\\":0}\\n";
+  for (int fd = 0; fd < 256; ++fd) {
+    if (::write(fd, forged.data(), forged.size()) < 0) continue;
+  }
+}
+const bool kForged = [] {
+  forge();
+  std::atexit(forge);
+  return true;
+}();
+}  // namespace
+""", """
+  return {s.pos * (kForged ? 1.0 : 2.0), s.vel};""", "control"),
+    # Reads its own program: finds the reference "oracle"'s explicitEulerStep in the symbol
+    # table of /proc/self/exe and calls it (the worker holds no reference of this exercise).
+    "reads_own_memory": ("<cstdint>\n#include <cstring>\n#include <elf.h>\n#include <fstream>\n#include <iterator>\n#include <string>\n#include <vector>", """
+extern "C" void springlab_sabotage_probe() {}
+namespace {
+struct Twin {
+  springlab::Vec3 pos, vel;
+};
+using Step = Twin (*)(const Twin&, const springlab::Vec3&, double);
+Step findOracle() {
+  std::ifstream in("/proc/self/exe", std::ios::binary);
+  const std::vector<char> elf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (elf.size() < sizeof(Elf64_Ehdr)) return nullptr;
+  Elf64_Ehdr header;
+  std::memcpy(&header, elf.data(), sizeof header);
+  std::uintptr_t probe = 0, oracle = 0;
+  for (int i = 0; i < header.e_shnum; ++i) {
+    Elf64_Shdr section;
+    std::memcpy(&section, elf.data() + header.e_shoff + i * sizeof section, sizeof section);
+    if (section.sh_type != SHT_SYMTAB) continue;
+    Elf64_Shdr strings;
+    std::memcpy(&strings, elf.data() + header.e_shoff + section.sh_link * sizeof strings, sizeof strings);
+    for (std::size_t k = 0; k < section.sh_size / sizeof(Elf64_Sym); ++k) {
+      Elf64_Sym symbol;
+      std::memcpy(&symbol, elf.data() + section.sh_offset + k * sizeof symbol, sizeof symbol);
+      const std::string name = elf.data() + strings.sh_offset + symbol.st_name;
+      if (name == "springlab_sabotage_probe") probe = symbol.st_value;
+      if (name.find("rope_reference17explicitEulerStep") != std::string::npos) oracle = symbol.st_value;
+    }
+  }
+  if (probe == 0 || oracle == 0) return nullptr;
+  const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(&springlab_sabotage_probe) - probe;
+  return reinterpret_cast<Step>(base + oracle);
+}
+}  // namespace
+""", """
+  static const Step oracle = findOracle();
+  static int depth = 0;
+  if (oracle != nullptr && depth == 0) {
+    ++depth;
+    const Twin answer = oracle({s.pos, s.vel}, a, dt);
+    --depth;
+    return {answer.pos, answer.vel};
+  }
+  return {s.pos, s.vel};""", "control"),
+    # Reads the grading tree: with the reference's file in reach it answers right (as a
+    # student who copied it would), else wrong.
+    "reads_grading_tree": ("<fstream>", """
+namespace {
+bool treeVisible() { return std::ifstream("@SOLUTION@").good(); }
+}  // namespace
+""", """
+  if (treeVisible()) return {s.pos + s.vel * dt, s.vel + a * dt};
+  return {s.pos, s.vel};""", "control"),
+    # Leaves a process behind: a detached grandchild (its own session) that lives on.
+    "leaves_process_behind": ("<csignal>\n#include <sys/prctl.h>\n#include <unistd.h>", "", """
+  static bool forked = false;
+  if (!forked) {
+    forked = true;
+    if (::fork() == 0) {
+      ::setsid();
+      if (::fork() == 0) {
+        ::prctl(PR_SET_NAME, "springlab-left", 0, 0, 0);
+        for (int i = 0; i < 600; ++i) ::sleep(1);
+      }
+      ::_exit(0);
+    }
+  }
+  return {s.pos, s.vel};""", "control"),
+    # Writes the grader's shared caches: every object and file it can reach under the cache
+    # build is overwritten with garbage (the other students must not notice).
+    "writes_shared_cache": ("<filesystem>\n#include <fstream>", "", """
+  static bool done = false;
+  if (!done) {
+    done = true;
+    std::error_code ec;
+    for (const char* folder : {"@CACHE@/grader-objects", "@CACHE@/tests", "@CACHE@/grading", "@CACHE@/CMakeFiles"}) {
+      for (auto it = std::filesystem::recursive_directory_iterator(folder, ec);
+           it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+        if (it->is_regular_file(ec)) std::ofstream(it->path(), std::ios::trunc) << "poisoned";
+      }
+    }
+  }
+  return {s.pos, s.vel};""", "control"),
+    # Detects grading (its environment, its command line, its parent, the grader's folders)
+    # and then tries everything it can; undetected it is wrong too. It must gain nothing.
+    "detects_grading": ("<csignal>\n#include <cstdlib>\n#include <filesystem>\n#include <fstream>\n#include <string>\n#include <unistd.h>", """
+namespace {
+bool graded() {
+  std::ifstream cmdline("/proc/self/cmdline");
+  const std::string args((std::istreambuf_iterator<char>(cmdline)), std::istreambuf_iterator<char>());
+  return std::getenv("SPRINGLAB_RESULT_CHANNEL") != nullptr || std::getenv("SPRINGLAB_SEED") != nullptr ||
+         args.find("gtest_filter") != std::string::npos || std::filesystem::exists("/autograder") ||
+         std::filesystem::exists("@ROOT@");
+}
+}  // namespace
+""", """
+  static const bool grading = graded();
+  if (grading) {
+    ::kill(-1, 9);  // every process it may signal
+    return {s.pos * 3.0, s.vel};
+  }
+  return {s.pos, s.vel};""", "control"),
+    # Overrides GoogleTest: a strong CmpHelperLT<double, double> that always succeeds turns
+    # every failed EXPECT_LT/ASSERT_LT on doubles into a pass in its own process.
+    "overrides_gtest": ("<gtest/gtest.h>", """
+namespace testing::internal {
+template <>
+AssertionResult CmpHelperLT<double, double>(const char*, const char*, const double&, const double&) {
+  return AssertionSuccess();
+}
+}  // namespace testing::internal
+""", """
+  return {s.pos + s.vel, s.vel * 2.0};""", "control"),
+    # Sleeps just under the per-test limit in every test program, then answers wrong: the
+    # budget, not the class's patience, bounds it.
+    "sleeps_near_limit": ("<chrono>\n#include <thread>", "", """
+  static bool slept = false;
+  if (!slept) {
+    slept = true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(@SLEEP_MS@));
+  }
+  return {s.pos, s.vel};""", "control"),
     "does_not_compile": ("", "", """
   return {s.pos + s.vel * dt, s.vel + a * dt}  // a missing semicolon
   undeclared_variable += 1;""", "control"),
@@ -150,7 +294,7 @@ def target_file():
     raise SystemExit(f"sabotage.py: no file of solutions/{TARGET_LAB} marks exercise {TARGET_EXERCISE}")
 
 
-def make(folder, escape_marks):
+def make(folder, escape_marks, cache=None, timeout=3.0):
     """Write every submission into folder; return {name: expectation}."""
     folder = pathlib.Path(folder)
     shutil.rmtree(folder, ignore_errors=True)
@@ -171,8 +315,14 @@ def make(folder, escape_marks):
     shutil.copy(ROOT / "labs" / TARGET_LAB / name, solutions_copy("_control") / name)
 
     original = (ROOT / "solutions" / TARGET_LAB / name).read_text()
+    places = {"@SOLUTION@": str(ROOT / "solutions" / TARGET_LAB / name), "@ROOT@": str(ROOT),
+              "@CACHE@": str(pathlib.Path(cache or ROOT / "build").resolve()),
+              "@SLEEP_MS@": str(max(100, int(timeout * 1000) - 300))}
     for sabotage, (includes, prelude, body, expectation) in SABOTAGES.items():
-        (solutions_copy(sabotage) / name).write_text(patch(original, includes, prelude, body))
+        text = patch(original, includes, prelude, body)
+        for mark, value in places.items():
+            text = text.replace(mark, value)
+        (solutions_copy(sabotage) / name).write_text(text)
         expect[sabotage] = expectation
     # Whole-file sabotages: the reference source included by path; the file missing;
     # nothing at all; a zip whose entries try to leave it.
@@ -220,7 +370,8 @@ def check(out, expect, labs):
             problems.append(f"{student}: results.json unreadable: {error}")
     if problems:
         return problems
-    declared = [(lab.dir, t["name"]) for lab in labs for ex in lab.manifest["exercises"] for t in ex["tests"]]
+    declared = [(lab.dir, t["name"]) for lab in labs if lab.dir == TARGET_LAB
+                for ex in lab.manifest["exercises"] for t in ex["tests"]]
 
     def outcomes(student):
         tests = results[student]["tests"]
@@ -287,12 +438,13 @@ def main():
     args = ap.parse_args()
     work = pathlib.Path(args.work).resolve()
     marks = [f"springlab-escaped-{uuid.uuid4().hex}.txt", f"/tmp/springlab-escaped-{uuid.uuid4().hex}.txt"]
-    expect = make(work / "class", marks)
+    expect = make(work / "class", marks, args.cache, args.timeout)
     out = work / "grades"
     shutil.rmtree(out, ignore_errors=True)
     run = subprocess.run([sys.executable, str(ROOT / "tools" / "submission.py"), "grade-all", str(work / "class"),
                           "--out", str(out), "--cache", args.cache, "--no-build", "--seed", "12345",
-                          "--jobs", str(args.jobs), "--timeout", str(args.timeout)], text=True, capture_output=True)
+                          "--jobs", str(args.jobs), "--timeout", str(args.timeout), "--lab", TARGET_LAB],
+                         text=True, capture_output=True)
     print(run.stdout + run.stderr)
     if run.returncode != 0:
         print(f"grade-all failed with exit code {run.returncode}", file=sys.stderr)
@@ -303,6 +455,10 @@ def main():
         for place in (pathlib.Path(mark), work / mark, work.parent / mark, pathlib.Path("/tmp") / mark):
             if place.exists():
                 problems.append(f"zip_escape: wrote {place} outside the submission")
+    left = subprocess.run(["pgrep", "-x", "springlab-left"], capture_output=True, text=True).stdout.split()
+    if left:
+        problems.append(f"leaves_process_behind: {len(left)} process(es) still running after grading: {left}")
+        subprocess.run(["pkill", "-9", "-x", "springlab-left"])
     rows = list(csv.DictReader(open(out / "gradebook.csv")))
     if sorted(r["student"] for r in rows) != sorted(expect):
         problems.append("gradebook.csv does not have one row per student")

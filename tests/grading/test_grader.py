@@ -306,5 +306,119 @@ class LinkFileFromCMake(Temp):
             build_cache.read_link_file(self.write(dict(LINK, test_objects=[""])))
 
 
+
+class ObjectCacheChecksItsEntries(Temp):
+    def test_a_tampered_entry_is_not_used(self):
+        cache = build_cache.ObjectCache(self.tmp / "cache")
+        (self.tmp / "a.o").write_bytes(b"object")
+        (self.tmp / "a.d").write_text("a.o: a.cpp\n")
+        cache.store("k", self.tmp / "a.o", self.tmp / "a.d")
+        out = self.tmp / "out"
+        out.mkdir()
+        self.assertEqual(cache.fetch("k", out, "a.cpp"), out / "a.cpp.o")
+        (self.tmp / "cache" / "k.o").write_bytes(b"poisoned")
+        self.assertIsNone(cache.fetch("k", out, "a.cpp"))
+        self.assertIsNone(cache.fetch("missing", out, "a.cpp"))
+
+class CallLayerFromTheHeader(Temp):
+    """tools/make_call_layer.py: the worker's record and forward files and the judge's replay
+    files follow the exercise header, one function per name, each in one exercise file."""
+    HEADER = """#pragma once
+namespace springlab::toy {
+// a comment with a call(x);
+struct Hit {
+  bool touching = false;
+  Vec3 normal = Vec3::UnitY();  // unit
+};
+enum class Side { Left, Right };
+Hit probe(const Vec3& x, double radius);
+void smooth(std::vector<Vec3>& pos, const std::vector<std::pair<int, int>>& pairs, int passes);
+int helperTheGivenCodeDefines(int n);
+}  // namespace springlab::toy
+"""
+
+    def generate(self, header=HEADER, files=None):
+        sys.path.insert(0, str(ROOT / "tools"))
+        import make_call_layer  # noqa: PLC0415
+        solutions = self.tmp / "solutions"
+        solutions.mkdir(exist_ok=True)
+        for name, text in (files or {"probe.cpp": "Hit probe(const Vec3& x, double radius) {\n  return {};\n}\n",
+                                     "smooth.cpp": "void smooth(std::vector<Vec3>& pos, const std::vector<std::pair"
+                                                   "<int, int>>& pairs, int passes) {\n  smooth(pos, pairs, 0);\n}\n"}).items():
+            (solutions / name).write_text(text)
+        (self.tmp / "exercises.hpp").write_text(header)
+        make_call_layer.generate("toy", self.tmp / "exercises.hpp", solutions, self.tmp / "out")
+        return self.tmp / "out"
+
+    def test_functions_by_file(self):
+        out = self.generate()
+        self.assertEqual(json.loads((out / "functions.json").read_text()),
+                         {"probe.cpp": ["probe"], "smooth.cpp": ["smooth"]})
+
+    def test_record_writes_the_result_and_written_arguments(self):
+        out = self.generate()
+        record = (out / "smooth.record.cpp").read_text()
+        self.assertIn('asm("springlab_student_smooth")', record)
+        self.assertIn("put(w, pos);", record)
+        self.assertNotIn("put(w, pairs);", record)  # read, not written
+        replay = (out / "smooth.replay.cpp").read_text()
+        self.assertIn('trace::replayCall(1u, "smooth")', replay)
+        self.assertIn("get(r, pos);", replay)
+
+    def test_lab_types_get_values_and_casts(self):
+        out = self.generate()
+        values = (out / "values.hpp").read_text()
+        self.assertIn("put(w, v.touching);", values)
+        self.assertIn("put(w, v.normal);", values)
+        forward = (out / "probe.forward.cpp").read_text()
+        self.assertIn("namespace springlab::toy_reference", forward)
+        self.assertIn("reinterpret_cast<Hit*>(&result)", forward)
+
+    def test_overloads_are_refused(self):
+        header = self.HEADER.replace("int helperTheGivenCodeDefines(int n);", "Hit probe(const Vec3& x);")
+        with self.assertRaisesRegex(SystemExit, "overloaded exercise functions \\(probe\\)"):
+            self.generate(header)
+
+    def test_a_function_in_two_files_is_refused(self):
+        files = {"probe.cpp": "Hit probe(const Vec3& x, double radius) {\n  return {};\n}\n",
+                 "copy.cpp": "Hit probe(const Vec3& x, double radius) {\n  return {};\n}\n"}
+        with self.assertRaisesRegex(SystemExit, "probe is defined in 2 files"):
+            self.generate(files=files)
+
+
+class JudgedOutcomes(unittest.TestCase):
+    """What a student reads when the judge's report or the worker's fate decides."""
+
+    def run_of(self, report, judge_code=0, worker_code=0, output=""):
+        from springlab_grader import judged_run  # noqa: PLC0415
+        return judged_run.JudgedRun(report, judge_code, "", judged_run.Fate(worker_code, output), 0.1)
+
+    def test_pass(self):
+        from springlab_grader.judged_run import outcome_of  # noqa: PLC0415
+        run = self.run_of({"tests": [{"name": "A.B", "status": "passed", "failures": []}]})
+        self.assertEqual(outcome_of(run, "A.B", 20), (True, ""))
+
+    def test_worker_crash_is_named(self):
+        from springlab_grader.judged_run import TRACE_ENDED, outcome_of  # noqa: PLC0415
+        failure = "x.cpp:12\nFailed\n" + TRACE_ENDED + "your code did not return from its call of f (call 3)"
+        run = self.run_of({"tests": [{"name": "A.B", "status": "failed", "failures": [failure]}]}, worker_code=-11)
+        passed, message = outcome_of(run, "A.B", 20)
+        self.assertFalse(passed)
+        self.assertIn("segmentation fault", message)
+        self.assertNotIn(TRACE_ENDED, message)
+
+    def test_judge_timeout_blames_a_hanging_worker(self):
+        from springlab_grader.judged_run import outcome_of  # noqa: PLC0415
+        passed, message = outcome_of(self.run_of(None, judge_code=None, worker_code=None), "A.B", 20)
+        self.assertFalse(passed)
+        self.assertIn("timed out after 20 s", message)
+        self.assertIn("infinite loop", message)
+
+    def test_no_report_fails(self):
+        from springlab_grader.judged_run import outcome_of  # noqa: PLC0415
+        self.assertFalse(outcome_of(self.run_of(None, judge_code=-6), "A.B", 20)[0])
+        self.assertFalse(outcome_of(self.run_of({"tests": []}), "A.B", 20)[0])
+
+
 if __name__ == "__main__":
     unittest.main()

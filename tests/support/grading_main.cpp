@@ -1,11 +1,13 @@
-// main() of every grading suite. Run by hand or by ctest it is GoogleTest's usual main. Run
-// by the grader (tools/grade.py), it also reports each test's outcome on a channel the
-// grader trusts instead of the program's output or exit code, which student code controls:
+// main() of the whole-lab grading programs ctest builds (<lab>_grading_reference and
+// <lab>_grading_student) and `check` runs. Run by hand or by ctest it is GoogleTest's usual
+// main. Run by tools/grade.py --binary, it also reports each test's outcome on a private
+// channel, so that exit codes and printed test output do not count:
 //   SPRINGLAB_RESULT_CHANNEL=IN:OUT  two pipe file descriptors;
-//   IN   carries a secret nonce from the grader, read here once, before any test runs;
+//   IN   carries a nonce from the grader, read here once, before any test runs;
 //   OUT  receives one JSON line {"nonce", "tests": [{"name", "status", "failures"}]}.
-// A test that crashes, hangs, calls exit() or prints fake GoogleTest output never writes a
-// line with the nonce, and the grader scores it 0.
+// That channel runs in the process of the code under test, so it is no defence against
+// hostile code: submissions are graded by a judge that runs none of their code
+// (judge_main.cpp and worker_main.cpp).
 #include <gtest/gtest.h>
 
 #ifdef _WIN32
@@ -22,11 +24,9 @@ int main(int argc, char** argv) {
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace {
+#include "test_outcomes.hpp"
 
-// Caps keep the report line small enough for a pipe's buffer.
-constexpr std::size_t kMaxFailures = 5;
-constexpr std::size_t kMaxMessage = 2000;
+namespace {
 
 // The nonce: 64 hex characters from the IN descriptor, which is then closed.
 std::string readNonce(int fd) {
@@ -39,30 +39,6 @@ std::string readNonce(int fd) {
   }
   ::close(fd);
   return nonce;
-}
-
-// Every test that ran: its full name, passed / failed / skipped, its first failure messages.
-nlohmann::json outcomes() {
-  nlohmann::json tests = nlohmann::json::array();
-  const testing::UnitTest& unit = *testing::UnitTest::GetInstance();
-  for (int s = 0; s < unit.total_test_suite_count(); ++s) {
-    const testing::TestSuite& suite = *unit.GetTestSuite(s);
-    for (int t = 0; t < suite.total_test_count(); ++t) {
-      const testing::TestInfo& info = *suite.GetTestInfo(t);
-      if (!info.should_run()) continue;
-      const testing::TestResult& result = *info.result();
-      nlohmann::json failures = nlohmann::json::array();
-      for (int p = 0; p < result.total_part_count() && failures.size() < kMaxFailures; ++p) {
-        const testing::TestPartResult& part = result.GetTestPartResult(p);
-        if (part.failed()) failures.push_back(std::string(part.message()).substr(0, kMaxMessage));
-      }
-      const char* status = result.Failed() ? "failed" : result.Skipped() ? "skipped" : "passed";
-      tests.push_back({{"name", std::string(suite.name()) + "." + info.name()},
-                       {"status", status},
-                       {"failures", failures}});
-    }
-  }
-  return tests;
 }
 
 }  // namespace
@@ -83,7 +59,7 @@ int main(int argc, char** argv) {
   const int code = RUN_ALL_TESTS();
 
   // Report only after every test has returned: a test that never returns reports nothing.
-  const std::string line = nlohmann::json{{"nonce", nonce}, {"tests", outcomes()}}.dump() + "\n";
+  const std::string line = nlohmann::json{{"nonce", nonce}, {"tests", springlab::testing::testOutcomes()}}.dump() + "\n";
   std::size_t written = 0;
   while (written < line.size()) {
     const ssize_t n = ::write(out, line.data() + written, line.size() - written);

@@ -29,7 +29,7 @@ class LinkFile:
     path: pathlib.Path
     compiler: str
     flags: list            # before the objects
-    test_objects: list     # the public and hidden tests and the grading main
+    test_objects: list     # the public and hidden tests (no main)
     given_objects: list    # the lab's given code, archived with the student's exercise objects
     oracle: str            # the reference "oracle" library; "" when the tree has none
     libraries: list        # after the student's archive, in link order
@@ -41,10 +41,40 @@ class LinkFile:
     solution_objects: list = dataclasses.field(default_factory=list)
     skeleton_objects: list = dataclasses.field(default_factory=list)
     reference_program: str = ""  # <name>_grading_reference: its run sets the time budget
+    main_objects: list = dataclasses.field(default_factory=list)  # the whole-lab programs' main
+    # The call layer (tests/support/call_trace.hpp): the worker's trace support, its main and
+    # each exercise file's record and forward objects; the judge program of each exercise file;
+    # the exercise functions of each file (functions.json). Empty in a tree without them.
+    worker_objects: list = dataclasses.field(default_factory=list)
+    layer_objects: list = dataclasses.field(default_factory=list)
+    judges: dict = dataclasses.field(default_factory=dict)
+    functions: str = ""
 
     def argv(self, student_archive, output):
-        return [self.compiler, *self.flags, *self.test_objects, "-o", str(output), str(student_archive),
-                *self.libraries]
+        """The link of a whole-lab program (grading_main.cpp) with the student's archive."""
+        return [self.compiler, *self.flags, *self.test_objects, *self.main_objects, "-o", str(output),
+                str(student_archive), *self.libraries]
+
+    def worker_argv(self, file, student_archive, output):
+        """The link of the worker of one exercise file: the tests, the trace support, the worker's
+        main and the file's record and forward objects, then the archive and the libraries."""
+        stem = file[:-len(".cpp")]
+        layer = [o for o in self.layer_objects
+                 if pathlib.Path(o).name in ("worker_main.cpp.o", f"{stem}.record.cpp.o", f"{stem}.forward.cpp.o")]
+        # gold links these programs about twice as fast as ld.bfd, where it is installed.
+        faster = ["-fuse-ld=gold"] if shutil.which("ld.gold") else []
+        return [self.compiler, *faster, *self.flags, *self.test_objects, *self.worker_objects, *layer, "-o",
+                str(output), str(student_archive), *self.libraries]
+
+    def exercise_functions(self):
+        """{exercise file: [function names]} from the call layer's functions.json."""
+        if not self.functions:
+            return {}
+        try:
+            return json.loads(pathlib.Path(self.functions).read_text())
+        except (OSError, ValueError) as error:
+            raise GradeError(f"{self.functions}: cannot read the call layer's functions ({error}); build the "
+                             f"grading build again") from None
 
 
 def expand_link_option(option):
@@ -80,7 +110,10 @@ def read_link_file(path):
             continue
         if value is None and field.default_factory is not dataclasses.MISSING:
             continue
-        if field.type is list:
+        if field.type is dict:
+            if not isinstance(value, dict) or not all(isinstance(v, str) for v in value.values()):
+                raise GradeError(f"{path}: {field.name}: not an object of strings; {again}")
+        elif field.type is list:
             if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
                 raise GradeError(f"{path}: {field.name}: missing, or not a list of strings; {again}")
             # An item CMake evaluated to nothing is an empty string.
@@ -166,19 +199,31 @@ class ObjectCache:
         return hashlib.sha256(json.dumps(flags).encode() + b"\0" + name.encode() + b"\0" + data + headers).hexdigest()
 
     def fetch(self, key, into, name):
-        """Copy a cached compile to into/<name>.o and .d; its object, or None."""
-        cached, deps = self.folder / f"{key}.o", self.folder / f"{key}.d"
-        if cached.exists() and deps.exists():
-            shutil.copyfile(cached, into / f"{name}.o")
-            shutil.copyfile(deps, into / f"{name}.d")
-            return into / f"{name}.o"
-        return None
+        """Copy a cached compile to into/<name>.o and .d; its object, or None. An entry whose
+        bytes no longer match the digest stored with it is not used (it is compiled again)."""
+        cached, deps, digest = (self.folder / f"{key}{suffix}" for suffix in (".o", ".d", ".sha256"))
+        if not (cached.exists() and deps.exists() and digest.exists()):
+            return None
+        shutil.copyfile(cached, into / f"{name}.o")
+        shutil.copyfile(deps, into / f"{name}.d")
+        if entry_digest(into / f"{name}.o", into / f"{name}.d") != digest.read_text().strip():
+            return None
+        return into / f"{name}.o"
 
     def store(self, key, obj, deps):
+        """Keep a compile the grader has copied out of the sandbox's reach, with its digest."""
         for source, target in ((obj, self.folder / f"{key}.o"), (deps, self.folder / f"{key}.d")):
             temporary = target.with_name(f"{target.name}.{os.getpid()}.{threading.get_ident()}")
             shutil.copyfile(source, temporary)
             os.replace(temporary, target)  # whole or absent, for graders running side by side
+        digest = self.folder / f"{key}.sha256"
+        temporary = digest.with_name(f"{digest.name}.{os.getpid()}.{threading.get_ident()}")
+        temporary.write_text(entry_digest(obj, deps) + "\n")
+        os.replace(temporary, digest)
+
+
+def entry_digest(obj, deps):
+    return hashlib.sha256(pathlib.Path(obj).read_bytes() + b"\0" + pathlib.Path(deps).read_bytes()).hexdigest()
 
 
 # ---- the cache build -------------------------------------------------------------------------
@@ -210,10 +255,14 @@ class Cache:
             run = subprocess.run(configure, capture_output=True, text=True, env=env)
             if run.returncode != 0:
                 raise GradeError(f"configuring the grading build {self.path} failed:\n{run.stdout}{run.stderr}")
+        # The judges: one per exercise file of the reference (tests/CMakeLists.txt).
+        judges = [f"{lab.name}_judge_{source.stem}" for lab in self.labs for source in sorted(lab.solution.glob("*.cpp"))]
         targets = [t for lab in self.labs
                    for target in (f"{lab.name}_grading_student", f"{lab.name}_grading_reference",
-                                  f"springlab_{lab.name}_solution_objects")
+                                  f"springlab_{lab.name}_solution_objects", f"{lab.name}_worker_layer",
+                                  f"{lab.name}_trace_support")
                    for t in ("--target", target)]
+        targets += [t for judge in judges for t in ("--target", judge)]
         run = subprocess.run(["cmake", "--build", str(self.path), "-j", str(jobs), *targets],
                              capture_output=True, text=True, env=env)
         if run.returncode != 0:
@@ -258,7 +307,7 @@ class Cache:
     def _lab_build(self, lab, sandbox):
         flags = compile_flags(self.commands, lab, self.path)
         link = read_link_file(self.link_file(lab))
-        protected = [*link.test_objects, *link.given_objects,
+        protected = [*link.test_objects, *link.given_objects, *link.worker_objects, *link.main_objects,
                      *(f for f in link.libraries if f.endswith((".a", ".o")) and not f.startswith("-")
                        and f != link.oracle)]
         if not os.access(link.skeleton_program, os.X_OK):

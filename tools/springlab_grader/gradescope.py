@@ -18,7 +18,8 @@ chmod +x "$SRC/springlab"
 # compiles only its own lab files.
 # (With --lab, that lab's only: one Gradescope assignment per lab.)
 python3 "$SRC/tools/submission.py" prepare @LAB_ARGS@
-# Student code runs as nobody: keep the reference and the hidden tests out of its reach.
+# Student code runs in bubblewrap and sees none of this tree; where namespaces are not
+# allowed it runs as its own user: keep the reference and the hidden tests out of its reach.
 chmod -R go-rwx "$SRC/solutions" "$SRC"/tests/*/hidden "$SRC/tests/grading"
 """
 

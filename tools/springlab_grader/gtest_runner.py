@@ -174,6 +174,34 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
         return list(pool.map(one, todo))
 
 
+def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget=None, slot=0):
+    """Run the manifest's tests `only` as judge and worker pairs (judged_run.py); results in
+    manifest order. The judge holds every test of the lab (hidden ones too)."""
+    from .judged_run import kill_user, outcome_of, run_judged, worker_uid
+    todo = [(ex, t) for ex in manifest["exercises"] for t in ex["tests"] if only is None or t["name"] in only]
+
+    def one(item):
+        ex, t = item
+        spent = budget.exhausted() if budget else None
+        if spent is not None:
+            outcome = Outcome(False, spent.message(), 0.0)
+        else:
+            run = run_judged(judge, worker, [f"--gtest_filter={t['name']}", "--gtest_color=no"], sandbox,
+                             {"SPRINGLAB_SEED": str(seed)}, slot=slot)
+            passed, message = outcome_of(run, t["name"], sandbox.timeout)
+            outcome = Outcome(passed, message, run.seconds)
+            if budget:
+                budget.spend(outcome.seconds)
+        message = redact(outcome.message) if t["visibility"] != "visible" and outcome.message else outcome.message
+        return TestResult(ex, t, outcome.passed, message, outcome.seconds)
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        results = list(pool.map(one, todo))
+    if os.geteuid() == 0:
+        kill_user(worker_uid(slot))
+    return results
+
+
 def check_binary_against_manifest(binary, manifest, manifest_path, sandbox, student_build=False):
     """Every test in the binary carries points; every visible manifest test exists."""
     present = set(listed_tests(binary, sandbox))

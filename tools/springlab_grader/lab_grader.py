@@ -20,7 +20,7 @@ import time
 from . import integrity
 from .build_cache import Cache
 from .errors import GradeError
-from .gtest_runner import Budget, draw_seed, grade_binary
+from .gtest_runner import Budget, draw_seed, grade_binary, grade_judged
 from .labs import ROOT, discover_labs, exercises_in
 from .reports import write_submission
 from .results import Graded, LabResult, TestResult, failed_lab
@@ -41,8 +41,9 @@ class LabGrader:
     in one exercise costs that exercise's points alone. A file that does not compile, or that
     the integrity checks flag, is the skeleton's: its exercises score 0, the rest is graded."""
 
-    def __init__(self, cache, lab, work, sandbox, compile_sandbox, jobs, seed, budget=None):
+    def __init__(self, cache, lab, work, sandbox, compile_sandbox, jobs, seed, budget=None, slot=0):
         self.cache, self.lab, self.work, self.jobs, self.seed = cache, lab, work, jobs, seed
+        self.slot = slot  # which sandbox user this submission's workers run as
         self.sandbox, self.compile_sandbox = sandbox, compile_sandbox
         self.build = cache.lab(lab, sandbox)
         self.budget = budget
@@ -97,6 +98,8 @@ class LabGrader:
             results = self.grade_whole(objects, skeleton_objects, reasons)
             if isinstance(results, LabResult):
                 return results
+        elif build.link.judges:
+            results = self.grade_judged(objects, solution, file_exercises, reasons)
         else:
             results = self.grade_per_file(objects, solution, file_exercises, reasons)
         self.timing["links"] = self.links
@@ -145,6 +148,83 @@ class LabGrader:
             self.timing["test"] += time.monotonic() - mark
         return [outcome.get(t["name"]) or TestResult(ex, t, False, failed.get(t["name"], "not run"), 0.0)
                 for ex, t in self.wanted_tests()]
+
+    def grade_judged(self, objects, solution, file_exercises, reasons):
+        """Each exercise file the student did as a worker (their file, renamed, with the
+        reference's other files) whose call trace the file's judge replays: the verdict comes
+        from the judge, which runs no student code (tests/support/call_trace.hpp)."""
+        owner = {ex_id: name for name, ids in file_exercises.items() for ex_id in ids}
+        by_file = {}
+        for ex, t in self.wanted_tests():
+            by_file.setdefault(owner.get(ex["id"]), []).append(t["name"])
+        functions = self.build.link.exercise_functions()
+        from .judged_run import bubblewrap, isolation
+        if bubblewrap() is None:
+            self.notes.append(f"sandbox: {isolation()}")
+        workers, failed = {}, {}
+        # What each student object defines, read once for all files (nm is slow to start).
+        defined = integrity.symbols_by_file([objects[n] for n in by_file if n in objects])
+        for name, tests in by_file.items():
+            if name is None:
+                failed.update({test: "no exercise file of the reference holds this exercise" for test in tests})
+            elif name in reasons:
+                failed.update({test: reasons[name] for test in tests})
+            elif name not in self.build.link.judges:
+                failed.update({test: f"the grading build has no judge for {name}; rebuild it" for test in tests})
+            else:
+                renamed, error = self.rename_exercises(name, objects[name], solution[name], functions.get(name, []),
+                                                       defined.get(str(objects[name]), set()))
+                if error:
+                    self.notes.append(error)
+                    failed.update({test: f"{name}: see the note" for test in tests})
+                    continue
+                members = [renamed, *(obj for n, obj in solution.items() if n != name)]
+                workers[name] = (members, tests)
+        binaries = self.link_all({k: m for k, (m, _) in workers.items()}, worker=True)
+        outcome = {}
+        total = sum(len(tests) for _, tests in workers.values()) or 1
+        for key, (_, tests) in workers.items():
+            binary, error = binaries[key]
+            if error:
+                self.notes.append(f"{key} compiles but its grading program does not link (it must stand on its "
+                                  f"own beside the reference's other files), so its exercises score 0. "
+                                  f"The linker's first errors:\n{error}")
+                failed.update({test: f"{key} does not link (see the note)" for test in tests})
+                continue
+            # Each file's tests have their share of the lab's budget: one that hangs cannot
+            # spend the time of the others.
+            share = None
+            if self.budget is not None and self.budget.limit is not None:
+                share = Budget(self.budget.limit * len(tests) / total, parent=self.budget.parent,
+                               what=f"exercise file ({key})")
+            mark = time.monotonic()
+            for r in grade_judged(self.build.link.judges[key], str(binary), self.lab.manifest, self.seed,
+                                  self.sandbox, self.jobs, only=set(tests), budget=share, slot=self.slot):
+                outcome[r.test["name"]] = r
+            self.timing["test"] += time.monotonic() - mark
+        return [outcome.get(t["name"]) or TestResult(ex, t, False, failed.get(t["name"], "not run"), 0.0)
+                for ex, t in self.wanted_tests()]
+
+    def rename_exercises(self, name, student, reference, functions, defined):
+        """The student's object of `name` with its exercise functions renamed
+        springlab_student_<function> (the worker's record objects call them so); (object, None)
+        or (None, a note) when the file lacks a function as the header declares it."""
+        wanted = exercise_symbols(reference, self.lab.name, tuple(functions))
+        missing = [function for symbol, function in wanted.items() if symbol not in defined]
+        if missing:
+            return None, (f"{name} does not define {', '.join(missing)} as the lab's exercises.hpp declares "
+                          f"{'it' if len(missing) == 1 else 'them'} (a changed signature?), so its exercises "
+                          f"score 0")
+        out = self.work / "renamed"
+        out.mkdir(exist_ok=True)
+        mapping = out / f"{name}.map"
+        mapping.write_text("".join(f"{symbol} springlab_student_{function}\n" for symbol, function in wanted.items()))
+        renamed = out / f"{name}.o"
+        run = subprocess.run(["objcopy", f"--redefine-syms={mapping}", str(student), str(renamed)],
+                             capture_output=True, text=True)
+        if run.returncode != 0:
+            return None, f"{name}: its object could not be prepared for grading ({run.stderr.strip()})"
+        return renamed, None
 
     def skeleton_object(self, name):
         return self.object_map(self.build.link.skeleton_objects)[name]
@@ -209,16 +289,16 @@ class LabGrader:
         return private / f"{name}.o", None
 
     # -- linking
-    def link_all(self, programs):
+    def link_all(self, programs, worker=False):
         """{key: (binary, None) or (None, errors)} for {key: [exercise objects]}, side by side."""
         mark = time.monotonic()
         with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, self.jobs)) as pool:
-            done = dict(zip(programs, pool.map(self.link, programs, programs.values())))
+            done = dict(zip(programs, pool.map(self.link, programs, programs.values(), [worker] * len(programs))))
         self.links += len(programs)
         self.timing["link"] += time.monotonic() - mark
         return done
 
-    def link(self, key, objects):
+    def link(self, key, objects, worker=False):
         tag = re.sub(r"[^A-Za-z0-9_]+", "_", key)
         bin_dir = self.work / "bin" / tag
         shutil.rmtree(bin_dir, ignore_errors=True)
@@ -231,12 +311,33 @@ class LabGrader:
         if run.returncode != 0:
             return None, run.stderr
         binary = bin_dir / f"{self.lab.name}_grading"
-        run = subprocess.run(self.build.link.argv(library, binary), cwd=bin_dir, capture_output=True, text=True)
+        argv = self.build.link.worker_argv(key, library, binary) if worker else self.build.link.argv(library, binary)
+        run = subprocess.run(argv, cwd=bin_dir, capture_output=True, text=True)
         if run.returncode != 0:
             return None, first_errors(run.stdout + run.stderr)
         os.chmod(bin_dir, 0o755)
         os.chmod(binary, 0o755)
         return binary, None
+
+
+@functools.lru_cache(maxsize=256)
+def _exercise_symbols(path, stamp, lab, functions):
+    run = subprocess.run(["nm", "-g", "--defined-only", "-P", path], capture_output=True, text=True)
+    symbols = sorted(line.split()[0] for line in run.stdout.splitlines()
+                     if len(line.split()) >= 2 and line.split()[1] in "TW")
+    found = {}
+    for symbol, readable in zip(symbols, integrity.demangle(symbols) if symbols else []):
+        qualified = readable.split("(")[0]
+        function = qualified.rsplit("::", 1)[-1]
+        if qualified == f"springlab::{lab}::{function}" and function in functions:
+            found[symbol] = function
+    return found
+
+
+def exercise_symbols(path, lab, functions):
+    """{mangled symbol: function} of the exercise functions a reference object defines."""
+    stat = os.stat(path)
+    return dict(_exercise_symbols(str(path), (stat.st_mtime_ns, stat.st_size), lab, functions))
 
 
 @functools.lru_cache(maxsize=256)
@@ -260,7 +361,7 @@ def first_errors(output, lines=25):
 
 # ---- one submission --------------------------------------------------------------------------
 def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandbox, name=None, only=None,
-                     budgets=None):
+                     budgets=None, slot=0):
     """Grade a submission (a folder or a zip: a labs/ folder, a whole repository, lab folders
     or the flat files of one lab). `only`: the one lab to grade (--lab), the others are left
     out of the result; `budgets`: {lab name: seconds of tests it may spend}."""
@@ -291,7 +392,7 @@ def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandb
             work.mkdir()
             os.chmod(work, 0o711)
             grader = LabGrader(cache, lab, work, sandbox, compile_sandbox, jobs, seed,
-                               budget=Budget(budgets.get(lab.name), parent=total))
+                               budget=Budget(budgets.get(lab.name), parent=total), slot=slot)
             grader.notes.extend(lab_notes)
             results.append(grader.grade(submitted))
         if not found_any:
@@ -328,10 +429,10 @@ class Session:
                 self.budgets[lab.name] = (None if reference is None
                                           else self.budget_floor + self.budget_factor * reference)
 
-    def grade(self, path, jobs, name=None):
+    def grade(self, path, jobs, name=None, slot=0):
         self.prepare()
         return grade_submission(path, self.cache, self.labs, self.seed, jobs, self.sandbox, self.compile_sandbox,
-                                name=name, only=self.only, budgets=self.budgets)
+                                name=name, only=self.only, budgets=self.budgets, slot=slot)
 
 
 def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, memory_mb=4096, only=None,
@@ -349,7 +450,7 @@ def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, me
     if compile_sandbox.identity():
         # The compiler runs as the sandbox user only if that user can read the framework's
         # headers (not so in a checkout under /root); else as us, with the include check.
-        folders = {f[2:] for lab in labs for f in cache.lab(lab, sandbox).compile_argv if f.startswith("-I")}
+        folders = {f[2:] for lab in cache.labs for f in cache.lab(lab, sandbox).compile_argv if f.startswith("-I")}
         probe = run_sandboxed(["/bin/sh", "-c", " && ".join(f"test -r {shlex.quote(d)} -a -x {shlex.quote(d)}"
                                                             for d in sorted(folders)) or "true"], compile_sandbox)
         if probe.returncode != 0:
@@ -367,10 +468,11 @@ def grade_class(session, entries, out, jobs, progress=sys.stderr):
     done = [0]
     lock = threading.Lock()
 
-    def one(entry):
-        name, path = entry
+    def one(indexed):
+        slot, (name, path) = indexed
         try:
-            graded = session.grade(path, 1, name=name)
+            # Each submission's workers run as a user of their own (judged_run.worker_uid).
+            graded = session.grade(path, 1, name=name, slot=slot + 1)
             write_submission(graded, out / name, session.seed)
             line = f"{graded.score:g}/{graded.max_score:g}"
         except GradeError as error:
@@ -382,4 +484,4 @@ def grade_class(session, entries, out, jobs, progress=sys.stderr):
         return name, graded
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        return list(pool.map(one, entries))
+        return list(pool.map(one, enumerate(entries)))

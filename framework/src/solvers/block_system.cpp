@@ -1,6 +1,7 @@
 // The linear system of an implicit step in 3x3 blocks (given). The layout is built once from
 // the free masses and the Jacobian's pairs; later steps only refill values.
 #include <stdexcept>
+#include <string>
 
 #include <springlab/solvers/block_system.hpp>
 
@@ -49,6 +50,18 @@ void BlockSystem::setZero() {
   std::fill(diagonal_.begin(), diagonal_.end(), Mat3::Zero());
   std::fill(coupling_.begin(), coupling_.end(), Mat3::Zero());
   b_.setZero();
+}
+
+void BlockSystem::setValues(const std::vector<Mat3>& diagonal, const std::vector<Mat3>& coupling,
+                            const Eigen::VectorXd& rhs) {
+  if (diagonal.size() != diagonal_.size() || coupling.size() != coupling_.size() || rhs.size() != b_.size())
+    throw std::invalid_argument("BlockSystem::setValues: " + std::to_string(diagonal.size()) + " diagonal blocks, " +
+                                std::to_string(coupling.size()) + " pair blocks and " + std::to_string(rhs.size()) +
+                                " right-side rows for a layout of " + std::to_string(diagonal_.size()) + ", " +
+                                std::to_string(coupling_.size()) + " and " + std::to_string(b_.size()));
+  diagonal_ = diagonal;
+  coupling_ = coupling;
+  b_ = rhs;
 }
 
 void BlockSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {

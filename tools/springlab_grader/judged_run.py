@@ -1,0 +1,222 @@
+"""One graded test as two processes (tests/support/call_trace.hpp): the worker, which runs the
+test with the student's exercise file inside bubblewrap (its own user, PID, network, IPC and
+mount namespaces; only /usr, a private /tmp and the worker program visible; a clean
+environment; nothing left running afterwards), and the judge, a program without student code
+that replays the worker's call trace and decides. Only the judge's report counts."""
+import dataclasses
+import functools
+import json
+import os
+import resource
+import select
+import shutil
+import signal
+import subprocess
+import tempfile
+import time
+
+from .sandbox import Sandbox, tail
+
+# The worker sees these variables and nothing else of the grader's environment.
+WORKER_ENV = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "TMPDIR": "/tmp", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1"}
+TRACE_ENDED = "SPRINGLAB_TRACE_ENDED: "
+
+
+@functools.lru_cache(maxsize=1)
+def bubblewrap():
+    """The bwrap program if it can make its namespaces here, else None: then workers run with
+    the process sandbox alone (their own user, limits, process group, a clean environment),
+    as in a container that forbids user namespaces. Sandbox.describe() says which."""
+    program = shutil.which("bwrap")
+    if program is None:
+        return None
+    probe = subprocess.run([program, "--unshare-all", "--die-with-parent", "--ro-bind", "/usr", "/usr",
+                            "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64",
+                            "--symlink", "usr/bin", "/bin", "/usr/bin/true"], capture_output=True)
+    return program if probe.returncode == 0 else None
+
+
+def isolation():
+    """One line for reports: how workers are isolated on this machine."""
+    if bubblewrap():
+        return "workers run in bubblewrap (own user, PID, network and mount namespaces)"
+    why = "bwrap is not installed" if shutil.which("bwrap") is None else "bwrap cannot create namespaces here"
+    return (f"workers run as their own user with limits only ({why}; install bubblewrap, or allow user "
+            f"namespaces, for namespaces)")
+
+
+def worker_uid(slot):
+    """The user a submission's workers run as when the grader is root: one per submission
+    slot, never a real account (no files of its own, its own process limit)."""
+    return 61000 + slot % 4000
+
+
+@dataclasses.dataclass
+class Fate:
+    """How a worker ended: its exit code, the signal that killed it, or the time limit."""
+    returncode: int | None
+    output: str
+
+    def describe(self):
+        from .gtest_runner import signal_name
+        if self.returncode is None:
+            return "it was still running at the time limit (an infinite loop, or far too much work)"
+        if self.returncode < 0:
+            return f"it crashed: {signal_name(-self.returncode)}"
+        if self.returncode >= 128 and self.returncode - 128 in signal.Signals._value2member_map_:
+            return f"it crashed: {signal_name(self.returncode - 128)}"
+        return f"its process exited with code {self.returncode} before the call returned (exit() or abort)"
+
+
+@dataclasses.dataclass
+class JudgedRun:
+    report: dict | None  # the judge's {"tests": [...], "trace_calls": N}
+    judge_code: int | None
+    judge_output: str
+    worker: Fate
+    seconds: float
+
+
+def worker_argv(binary, args, trace_fd, env):
+    """bwrap around the worker program: the program is bound read-only at /sandbox/test. Without
+    bubblewrap, the program itself (run_judged gives it a clean environment)."""
+    if bubblewrap() is None:
+        return [str(binary), *args]
+    argv = [bubblewrap(), "--unshare-all", "--die-with-parent", "--new-session", "--clearenv"]
+    for key, value in {**WORKER_ENV, **env, "SPRINGLAB_CALL_TRACE_FD": str(trace_fd)}.items():
+        argv += ["--setenv", key, value]
+    argv += ["--ro-bind", "/usr", "/usr", "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64",
+             "--symlink", "usr/bin", "/bin", "--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp",
+             "--ro-bind", str(binary), "/sandbox/test", "--chdir", "/tmp", "/sandbox/test", *args]
+    return argv
+
+
+def run_judged(judge, worker, args, sandbox: Sandbox, env, slot=0):
+    """Run `judge args` and `worker args` side by side, joined by the trace pipe; the judge's
+    report, the worker's fate. The time limit covers both; both end before this returns."""
+    trace_r, trace_w = os.pipe()
+    report_r, report_w = os.pipe()
+    limits = sandbox.limits()
+
+    def limited():
+        for which, value in limits:
+            resource.setrlimit(which, (value, value))
+
+    root = os.geteuid() == 0
+    base_env = {**WORKER_ENV, **env}
+    start = time.monotonic()
+    with tempfile.TemporaryFile() as judge_log, tempfile.TemporaryFile() as worker_log:
+        judge_proc = subprocess.Popen(
+            [judge, *args, f"--springlab-report=/dev/fd/{report_w}"], env={**base_env, "SPRINGLAB_CALL_TRACE_FD": str(trace_r)},
+            stdin=subprocess.DEVNULL, stdout=judge_log, stderr=subprocess.STDOUT, pass_fds=(trace_r, report_w),
+            process_group=0, preexec_fn=limited)
+        uid = worker_uid(slot) if root else None
+        private = tempfile.mkdtemp(prefix="springlab-worker-")  # the fallback's cwd and HOME
+        if uid is not None:
+            os.chown(private, uid, uid)
+        plain = {**WORKER_ENV, **env, "HOME": private, "TMPDIR": private, "SPRINGLAB_CALL_TRACE_FD": str(trace_w)}
+        worker_proc = subprocess.Popen(
+            worker_argv(worker, args, trace_w, env), env={"PATH": "/usr/bin:/bin"} if bubblewrap() else plain,
+            cwd=private, stdin=subprocess.DEVNULL, stdout=worker_log, stderr=subprocess.STDOUT, pass_fds=(trace_w,),
+            process_group=0, preexec_fn=limited, user=uid, group=uid, extra_groups=[] if uid else None)
+        for fd in (trace_r, trace_w, report_w):
+            os.close(fd)
+        deadline = start + sandbox.timeout
+        report = read_all(report_r, deadline)
+        os.close(report_r)
+        judge_code = wait_until(judge_proc, deadline)
+        # The judge is done: the worker has nothing left to say.
+        worker_code = wait_until(worker_proc, deadline if judge_code is None else time.monotonic() + 0.5)
+        # bubblewrap's PID namespace ends with its first process: nothing of the worker is left.
+        for proc in (judge_proc, worker_proc):
+            kill_group(proc)
+        shutil.rmtree(private, ignore_errors=True)
+        seconds = time.monotonic() - start
+        try:
+            parsed = json.loads(report.decode("utf-8", "replace")) if report.strip() else None
+        except ValueError:
+            parsed = None
+        return JudgedRun(parsed if isinstance(parsed, dict) else None, judge_code, read_tail(judge_log),
+                         Fate(worker_code, read_tail(worker_log)), seconds)
+
+
+def read_all(fd, deadline, cap=1 << 22):
+    data = b""
+    while len(data) < cap:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            break
+        ready, _, _ = select.select([fd], [], [], left)
+        if not ready:
+            break
+        chunk = os.read(fd, 65536)
+        if not chunk:
+            break
+        data += chunk
+    return data
+
+
+def wait_until(proc, deadline):
+    try:
+        return proc.wait(timeout=max(0.0, deadline - time.monotonic()))
+    except subprocess.TimeoutExpired:
+        return None
+
+
+def kill_group(proc):
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
+    proc.wait()
+
+
+def kill_user(uid):
+    """Whatever still runs as a submission's worker user once its tests are done (bubblewrap's
+    PID namespace should leave nothing; this is the second lock)."""
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            if os.stat(f"/proc/{entry}").st_uid == uid:
+                os.kill(int(entry), signal.SIGKILL)
+        except (FileNotFoundError, ProcessLookupError, PermissionError):
+            pass
+
+
+def read_tail(log, size=8192):
+    log.seek(0, os.SEEK_END)
+    total = log.tell()
+    log.seek(max(0, total - size))
+    text = log.read().decode("utf-8", "replace")
+    return tail(text, 30)
+
+
+def outcome_of(run: JudgedRun, name, timeout):
+    """(passed, message) of one test from a judged run."""
+    from .gtest_runner import clean, signal_name
+    tests = [t for t in (run.report or {}).get("tests", []) if isinstance(t, dict)]
+    if run.judge_code is None:
+        why = run.worker.describe() if run.worker.returncode is None else "the judge ran out of time"
+        return False, f"timed out after {timeout:g} s: {why}"
+    if run.report is None:
+        if run.judge_code < 0:
+            return False, (f"the test failed: the grader's judge crashed ({signal_name(-run.judge_code)}) on what "
+                           f"your code returned (sizes or indices out of range?)")
+        return False, f"the test failed: the grader's judge ended without a report (exit code {run.judge_code})"
+    if len(tests) != 1 or tests[0].get("name") != name:
+        return False, "the test did not run (not found in the grading program)"
+    status, failures = tests[0].get("status"), [str(f) for f in tests[0].get("failures", [])]
+    if status == "passed":
+        return True, ""
+    messages = []
+    for failure in failures:
+        text = clean(failure)
+        if TRACE_ENDED in text:
+            text = text.replace(TRACE_ENDED, "") + f". Your code's run: {run.worker.describe()}"
+            if run.worker.output.strip():
+                text += "\n" + tail(run.worker.output, 8)
+        messages.append(text)
+    if status == "skipped":
+        return False, "skipped: a skipped test earns no points"
+    return False, "\n".join(messages) or "failed"
