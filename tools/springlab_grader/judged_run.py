@@ -4,15 +4,18 @@ mount namespaces; only /usr, a private /tmp and the worker program visible; a cl
 environment; nothing left running afterwards), and the judge, a program without student code
 that replays the worker's call trace and decides. Only the judge's report counts."""
 import dataclasses
+import fcntl
 import functools
 import json
 import os
+import pathlib
 import resource
 import select
 import shutil
 import signal
 import subprocess
 import tempfile
+import threading
 import time
 
 from .sandbox import Sandbox, tail
@@ -45,10 +48,33 @@ def isolation():
             f"namespaces, for namespaces)")
 
 
+_claimed = {}
+_claim_lock = threading.Lock()
+
+
 def worker_uid(slot):
     """The user a submission's workers run as when the grader is root: one per submission
-    slot, never a real account (no files of its own, its own process limit)."""
-    return 61000 + slot % 4000
+    slot of this grader, never a real account (no files of its own, its own process limit).
+    Graders running side by side (ctest, two instructors) each hold a lock on the users they
+    use, so no grader ever signals another's workers."""
+    with _claim_lock:
+        if slot not in _claimed:
+            folder = pathlib.Path(tempfile.gettempdir()) / "springlab-worker-users"
+            folder.mkdir(mode=0o700, exist_ok=True)
+            start = (os.getpid() * 7 + slot) % 4000
+            for k in range(4000):
+                uid = 61000 + (start + k) % 4000
+                handle = open(folder / f"{uid}.lock", "w")
+                try:
+                    fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                except OSError:
+                    handle.close()
+                    continue
+                _claimed[slot] = (uid, handle)  # held until this grader ends
+                break
+            else:
+                raise RuntimeError("no free worker user among 61000-64999")
+        return _claimed[slot][0]
 
 
 @dataclasses.dataclass
