@@ -79,14 +79,16 @@ def scaffold_and_compile(tree, lab, run):
                  f"framework/labs/{lab.name}/include/springlab/{lab.name}/exercises.hpp", f"handouts/{lab.dir}.md"):
         if result.returncode != 1 or not re.search(rf"^{re.escape(path)}:\d+: placeholder left", result.stderr, re.M):
             problems.append(f"author_check does not report the placeholder in {path}: {result.stderr}")
-    # The oracle header as tests/CMakeLists.txt generates it: both framework headers of the
-    # lab in one, the lab's namespace renamed.
+    # The oracle header as tests/CMakeLists.txt generates it: every header of the lab in one
+    # (the exercises first, the given class last), the lab's namespace renamed.
     oracle = tree / "oracle" / lab.name
     oracle.mkdir(parents=True)
+    folder = given / "springlab" / lab.name
+    middle = sorted(p.stem for p in folder.glob("*.hpp") if p.stem not in ("exercises", lab.name))
     text = ""
-    for header in headers.values():
-        part = header.read_text().replace("#pragma once", "")
-        part = part.replace(f"#include <springlab/{lab.name}/exercises.hpp>", "")
+    for stem in ["exercises", *middle, lab.name]:
+        part = (folder / f"{stem}.hpp").read_text().replace("#pragma once", "")
+        part = re.sub(rf"#include <springlab/{lab.name}/[a-z_]+\.hpp>", "", part)
         text += part.replace(f"namespace springlab::{lab.name} ", f"namespace springlab::{lab.name}_reference ")
     (oracle / f"oracle_{lab.name}.hpp").write_text(f"#pragma once\n{text}")
     # Only the framework's headers (and the tests' support) on the include path, as CMake does.
