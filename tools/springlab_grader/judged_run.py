@@ -10,7 +10,6 @@ import json
 import os
 import pathlib
 import resource
-import select
 import shutil
 import signal
 import subprocess
@@ -18,7 +17,7 @@ import tempfile
 import threading
 import time
 
-from .sandbox import Sandbox, tail
+from .sandbox import Sandbox, read_until_closed, tail
 
 # The worker sees these variables and nothing else of the grader's environment.
 WORKER_ENV = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "TMPDIR": "/tmp", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1"}
@@ -148,7 +147,7 @@ def run_judged(judge, worker, args, sandbox: Sandbox, env, slot=0):
         for fd in (trace_r, trace_w, report_w):
             os.close(fd)
         deadline = start + sandbox.timeout
-        report = read_all(report_r, deadline)
+        report = read_until_closed(report_r, deadline, cap=1 << 22)
         os.close(report_r)
         judge_code = wait_until(judge_proc, deadline)
         # The judge is done: the worker has nothing left to say.
@@ -164,22 +163,6 @@ def run_judged(judge, worker, args, sandbox: Sandbox, env, slot=0):
             parsed = None
         return JudgedRun(parsed if isinstance(parsed, dict) else None, judge_code, read_tail(judge_log),
                          Fate(worker_code, read_tail(worker_log)), seconds)
-
-
-def read_all(fd, deadline, cap=1 << 22):
-    data = b""
-    while len(data) < cap:
-        left = deadline - time.monotonic()
-        if left <= 0:
-            break
-        ready, _, _ = select.select([fd], [], [], left)
-        if not ready:
-            break
-        chunk = os.read(fd, 65536)
-        if not chunk:
-            break
-        data += chunk
-    return data
 
 
 def wait_until(proc, deadline):

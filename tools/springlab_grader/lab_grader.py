@@ -136,10 +136,7 @@ class LabGrader:
         for key, (_, tests) in programs.items():
             binary, error = binaries[key]
             if error:
-                self.notes.append(f"{key} compiles but its grading program does not link (it must stand on its "
-                                  f"own beside the reference's other files), so its exercises score 0. "
-                                  f"The linker's first errors:\n{error}")
-                failed.update({test: f"{key} does not link (see the note)" for test in tests})
+                failed.update(self.does_not_link(key, error, tests))
                 continue
             mark = time.monotonic()
             for r in grade_binary(str(binary), self.lab.manifest, self.seed, self.sandbox, self.jobs,
@@ -186,10 +183,7 @@ class LabGrader:
         for key, (_, tests) in workers.items():
             binary, error = binaries[key]
             if error:
-                self.notes.append(f"{key} compiles but its grading program does not link (it must stand on its "
-                                  f"own beside the reference's other files), so its exercises score 0. "
-                                  f"The linker's first errors:\n{error}")
-                failed.update({test: f"{key} does not link (see the note)" for test in tests})
+                failed.update(self.does_not_link(key, error, tests))
                 continue
             # Each file's tests have their share of the lab's budget: one that hangs cannot
             # spend the time of the others.
@@ -225,6 +219,13 @@ class LabGrader:
         if run.returncode != 0:
             return None, f"{name}: its object could not be prepared for grading ({run.stderr.strip()})"
         return renamed, None
+
+    def does_not_link(self, key, error, tests):
+        """The note and the tests' message for an exercise file whose program does not link."""
+        self.notes.append(f"{key} compiles but its grading program does not link (it must stand on its own "
+                          f"beside the reference's other files), so its exercises score 0. "
+                          f"The linker's first errors:\n{error}")
+        return {test: f"{key} does not link (see the note)" for test in tests}
 
     def skeleton_object(self, name):
         return self.object_map(self.build.link.skeleton_objects)[name]
