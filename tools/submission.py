@@ -71,12 +71,16 @@ def common_options(ap):
                          f"(default {BUDGET_FACTOR:g}; 0 = no budget)")
     ap.add_argument("--budget-floor", type=float, default=BUDGET_FLOOR,
                     help=f"seconds added to each lab's time budget (default {BUDGET_FLOOR:g})")
+    ap.add_argument("--no-call-check", action="store_true",
+                    help="run exercise files that call the test framework, files, the environment or other "
+                         "processes instead of grading them as the skeleton's (only to test the sandbox)")
 
 
 def setup(args):
     return start_session(args.cache, build=not args.no_build, jobs=args.jobs, seed=args.seed,
                          timeout=args.timeout, memory_mb=args.memory_limit_mb, only=args.lab,
-                         budget_factor=args.budget_factor, budget_floor=args.budget_floor)
+                         budget_factor=args.budget_factor, budget_floor=args.budget_floor,
+                         call_check=not args.no_call_check)
 
 
 def cmd_grade(args):

@@ -9,7 +9,9 @@ submission must get exactly the points of its honest parts: test by test, the ou
 exercise not done). A few have other expectations (an empty submission scores 0; a zip that
 tries to escape keeps its honest files). The class is graded together (`grade-all --lab
 rope`, two at a time), so an attack on the grader's caches or on other students' processes
-shows as another student's changed outcome.
+shows as another student's changed outcome. The classes the grader's call check stops before
+they run (BEHIND_THE_CALL_CHECK) are graded a second time with that check off, so that the
+sandbox behind it is tested too.
 
     tests/grading/sabotage.py --cache build --work build/tests/sabotage      (run by ctest)
 """
@@ -429,6 +431,24 @@ def schema_problems(data):
     return problems
 
 
+# The classes whose code calls what exercise code never needs (integrity.FORBIDDEN_CALLS).
+BEHIND_THE_CALL_CHECK = {"reads_own_memory", "reads_grading_tree", "leaves_process_behind", "writes_shared_cache",
+                         "detects_grading"}
+
+
+def grade_all(folder, out, args, *extra):
+    """`grade-all` of one class folder into out; False (and why, printed) if it failed."""
+    shutil.rmtree(out, ignore_errors=True)
+    run = subprocess.run([sys.executable, str(ROOT / "tools" / "submission.py"), "grade-all", str(folder),
+                          "--out", str(out), "--cache", args.cache, "--no-build", "--seed", "12345",
+                          "--jobs", str(args.jobs), "--timeout", str(args.timeout), "--lab", TARGET_LAB, *extra],
+                         text=True, capture_output=True)
+    print(run.stdout + run.stderr)
+    if run.returncode != 0:
+        print(f"grade-all {folder.name} failed with exit code {run.returncode}", file=sys.stderr)
+    return run.returncode == 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--cache", required=True, help="a build of this tree with the grading programs built")
@@ -440,17 +460,25 @@ def main():
     marks = [f"springlab-escaped-{uuid.uuid4().hex}.txt", f"/tmp/springlab-escaped-{uuid.uuid4().hex}.txt"]
     expect = make(work / "class", marks, args.cache, args.timeout)
     out = work / "grades"
-    shutil.rmtree(out, ignore_errors=True)
-    run = subprocess.run([sys.executable, str(ROOT / "tools" / "submission.py"), "grade-all", str(work / "class"),
-                          "--out", str(out), "--cache", args.cache, "--no-build", "--seed", "12345",
-                          "--jobs", str(args.jobs), "--timeout", str(args.timeout), "--lab", TARGET_LAB],
-                         text=True, capture_output=True)
-    print(run.stdout + run.stderr)
-    if run.returncode != 0:
-        print(f"grade-all failed with exit code {run.returncode}", file=sys.stderr)
+    if not grade_all(work / "class", out, args):
         return 1
     labs = discover_labs()
     problems = check(out, expect, labs)
+    # The grader's first line against hostile code: a file that calls the test framework,
+    # files, the environment or other processes is graded as the skeleton's before it runs.
+    caught = sorted(s for s in expect if "which reach" in (out / s / "report.md").read_text())
+    for student in sorted(BEHIND_THE_CALL_CHECK - set(caught)):
+        problems.append(f"{student}: its forbidden calls were not caught before it ran")
+    # The sandbox behind it: the same classes run (--no-call-check), and must still gain nothing.
+    behind = work / "class-behind"
+    shutil.rmtree(behind, ignore_errors=True)
+    behind.mkdir()
+    for student in ["_control", *caught]:
+        shutil.copytree(work / "class" / student, behind / student, symlinks=True)
+    if not grade_all(behind, work / "grades-behind", args, "--no-call-check"):
+        return 1
+    problems += [f"behind the call check: {p}" for p in
+                 check(work / "grades-behind", {s: expect[s] for s in ["_control", *caught]}, labs)]
     for mark in marks:
         for place in (pathlib.Path(mark), work / mark, work.parent / mark, pathlib.Path("/tmp") / mark):
             if place.exists():

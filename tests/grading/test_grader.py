@@ -4,6 +4,7 @@ hidden-test redaction, zip safety, outputs (Gradescope results.json, JUnit XML),
 folders, the link file CMake writes."""
 import json
 import pathlib
+import re
 import stat
 import sys
 import tempfile
@@ -418,6 +419,66 @@ class JudgedOutcomes(unittest.TestCase):
         from springlab_grader.judged_run import outcome_of  # noqa: PLC0415
         self.assertFalse(outcome_of(self.run_of(None, judge_code=-6), "A.B", 20)[0])
         self.assertFalse(outcome_of(self.run_of({"tests": []}), "A.B", 20)[0])
+
+
+class StudentReadmePointsTable(unittest.TestCase):
+    """The student README's table of public and hidden points per lab is the manifests' sum."""
+
+    def test_table_matches_the_manifests(self):
+        text = (ROOT / "tools" / "templates" / "README.student.md").read_text()
+        rows = {int(m[1]): (int(m[2]), int(m[3]), int(m[4])) for m in
+                re.finditer(r"^\| (\d) \| (\d+) \| (\d+) \| (\d+) \|$", text, flags=re.MULTILINE)}
+        for number, lab in enumerate(labs.discover_labs(), start=1):
+            tests = [t for ex in lab.manifest["exercises"] for t in ex["tests"]]
+            public = sum(t["points"] for t in tests if t["visibility"] == "visible")
+            hidden = sum(t["points"] for t in tests if t["visibility"] != "visible")
+            with self.subTest(lab.dir):
+                self.assertEqual(rows.get(number), (public, hidden, public + hidden))
+
+
+class ForbiddenCallsOfExerciseCode(Temp):
+    """The calls an exercise file may not make (integrity.FORBIDDEN_CALLS), read from the
+    undefined symbols of real objects: honest code passes, each way out is named."""
+
+    def compiled(self, name, code):
+        import subprocess  # noqa: PLC0415
+        source = self.tmp / f"{name}.cpp"
+        source.write_text(code)
+        obj = self.tmp / f"{name}.o"
+        subprocess.run(["g++", "-std=c++20", "-O2", "-c", str(source), "-o", str(obj)], check=True)
+        return integrity.forbidden_calls(integrity.undefined_symbols(obj))
+
+    def test_honest_code_computes_allocates_and_prints(self):
+        self.assertEqual(self.compiled("honest", """
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+std::vector<double> f(const std::vector<double>& x) {
+  std::vector<double> y;
+  for (double v : x) y.push_back(std::sqrt(v) / std::pow(v, 0.3));
+  if (y.empty()) throw std::invalid_argument("empty: " + std::to_string(x.size()));
+  std::cout << y.size() << std::endl;
+  return y;
+}"""), [])
+
+    def test_each_way_out_is_named(self):
+        cases = {
+            "environment": ('#include <cstdlib>\nbool f() { return std::getenv("HOME") != nullptr; }',
+                            "environment"),
+            "file": ('#include <fstream>\nbool f() { return std::ifstream("/proc/self/cmdline").good(); }',
+                     "files"),
+            "framework": ('#include <gtest/gtest.h>\n'
+                          'const char* f() { return testing::UnitTest::GetInstance()->current_test_info()->name(); }',
+                          "test framework"),
+            "process": ('#include <unistd.h>\nint f() { return ::fork(); }', "processes"),
+        }
+        for name, (code, what) in cases.items():
+            with self.subTest(name):
+                found = self.compiled(name, code)
+                self.assertTrue(found, f"{name}: nothing found")
+                self.assertTrue(any(what in reached for _, reached in found), found)
 
 
 if __name__ == "__main__":

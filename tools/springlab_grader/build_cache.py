@@ -49,6 +49,7 @@ class LinkFile:
     layer_objects: list = dataclasses.field(default_factory=list)
     judges: dict = dataclasses.field(default_factory=dict)
     functions: str = ""
+    worker_seccomp: str = ""  # the program that writes the workers' seccomp filter; "" without libseccomp
 
     def argv(self, student_archive, output):
         """The link of a whole-lab program (grading_main.cpp) with the student's archive."""

@@ -174,7 +174,7 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
         return list(pool.map(one, todo))
 
 
-def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget=None, slot=0):
+def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget=None, slot=0, seccomp=None):
     """Run the manifest's tests `only` as judge and worker pairs (judged_run.py); results in
     manifest order. The judge holds every test of the lab (hidden ones too)."""
     from .judged_run import kill_user, outcome_of, run_judged, worker_uid
@@ -186,8 +186,8 @@ def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget
         if spent is not None:
             outcome = Outcome(False, spent.message(), 0.0)
         else:
-            run = run_judged(judge, worker, [f"--gtest_filter={t['name']}", "--gtest_color=no"], sandbox,
-                             {"SPRINGLAB_SEED": str(seed)}, slot=slot)
+            run = run_judged(judge, worker, t["name"], sandbox,
+                             {"SPRINGLAB_SEED": str(seed)}, slot=slot, seccomp=seccomp)
             passed, message = outcome_of(run, t["name"], sandbox.timeout)
             outcome = Outcome(passed, message, run.seconds)
             if budget:

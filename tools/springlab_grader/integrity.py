@@ -1,7 +1,8 @@
 """Checks of a submission's compiled exercise files, run on the trusted side: a file that
 includes anything outside the submission and the framework (solutions/, hidden tests), calls
 the reference "oracle", or redefines the framework's, GoogleTest's or the grading main's
-symbols is graded as the released skeleton's file, and the report says why."""
+symbols, or calls what an exercise never needs to (the test framework, files, the environment,
+other processes) is graded as the released skeleton's file, and the report says why."""
 import pathlib
 import re
 import subprocess
@@ -32,6 +33,42 @@ def symbols_by_file(files, undefined=False):
         parts = rest.split()
         if where in found and parts and (undefined or (len(parts) >= 2 and parts[1] in "TDBRG")):
             found[where].add(parts[0])
+    return found
+
+
+# What exercise code never needs, and hostile code would use to learn which test runs or that
+# it is graded (the test framework's state, the command line and environment, the grading
+# tree's files) or to reach beyond its process. Matched against the undefined symbols of the
+# student's object: the calls it makes. Code that reads its own memory without calling
+# anything is out of reach of this check (the README's limits).
+FORBIDDEN_CALLS = [
+    (re.compile(r"^_ZN?K?7testing"), "the test framework (GoogleTest)"),
+    (re.compile(r"^(getenv|secure_getenv|environ|__environ|__libc_argv|program_invocation(_short)?_name)$"),
+     "the environment or command line"),
+    (re.compile(r"^(open|open64|openat|openat64|__open_2|__open64_2|__openat_2|creat|creat64|fopen|fopen64|"
+                r"freopen|freopen64|opendir|fdopendir|readlink|readlinkat|stat|stat64|lstat|__xstat|__xstat64|"
+                r"access|faccessat|dlopen|dlmopen|dlsym|dlvsym|dladdr|dladdr1|dlinfo|dl_iterate_phdr)$"),
+     "files or loaded programs"),
+    (re.compile(r"^_ZNSt(7__cxx11)?1[34]basic_[io]?fstream|^_ZNSt(7__cxx11)?10filesystem|"
+                r"^_ZNSt(7__cxx11)?1[34]basic_filebuf"), "files (std::fstream, std::filesystem)"),
+    (re.compile(r"^(backtrace|backtrace_symbols|backtrace_symbols_fd|_Unwind_Backtrace|_Unwind_GetIP)$"),
+     "its own call stack"),
+    (re.compile(r"^(syscall|ptrace|process_vm_readv|process_vm_writev|prctl|fork|vfork|clone|clone3|execv|execve|"
+                r"execvp|execvpe|execl|execle|execlp|fexecve|system|popen|posix_spawn|posix_spawnp|kill|killpg|"
+                r"socket|connect|bind|mprotect|setuid|setgid|setsid|setpgid|daemon)$"),
+     "other processes or the operating system"),
+]
+
+
+def forbidden_calls(undefined):
+    """[(symbol, what it reaches)] among an object's undefined symbols (`nm -u`)."""
+    found = []
+    for symbol in sorted(undefined):
+        bare = symbol.split("@")[0]
+        for pattern, what in FORBIDDEN_CALLS:
+            if pattern.search(bare):
+                found.append((bare, what))
+                break
     return found
 
 
@@ -73,13 +110,14 @@ def outside_includes(work, flags, name, compile_argv):
     return None
 
 
-def find_cheats(objects, work, build, lab, notes, others=None):
+def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
     """Files to grade as the skeleton's: they include the instructor's files, call the
     reference solution, or redefine the framework's, GoogleTest's or the grader's symbols.
     `objects` are the compiled files (with their .d files beside them), `build` the lab's
     LabBuild; each finding is added to notes. `others` maps a file's name to the symbols the
     reference's other exercise files define: a file that defines another exercise's function
-    (which its grading program takes from the reference) is flagged too."""
+    (which its grading program takes from the reference) is flagged too, and so is a file that
+    calls what FORBIDDEN_CALLS lists (unless `call_check` is off, to test the sandbox)."""
     allowed = allowed_folders(work, build.compile_argv)
     flagged = {}
     defined_in = symbols_by_file(objects)
@@ -107,6 +145,11 @@ def find_cheats(objects, work, build, lab, notes, others=None):
         if defined:
             flagged.setdefault(name, "redefines symbols of the framework, GoogleTest or the grader ("
                                + ", ".join(demangle(defined)[:3]) + ")")
+        reached = forbidden_calls(undefined_in[str(obj)]) if call_check else []
+        if reached:
+            what = sorted({w for _, w in reached})
+            flagged.setdefault(name, f"calls {', '.join(demangle([s for s, _ in reached])[:3])}, which reach "
+                               f"{' and '.join(what)}: exercise code may compute, allocate and print, nothing more")
         foreign = defined_in[str(obj)] & (others or {}).get(name, set())
         if foreign:
             flagged.setdefault(name, "defines functions of another exercise file ("

@@ -38,10 +38,26 @@ def bubblewrap():
     return program if probe.returncode == 0 else None
 
 
-def isolation():
+@functools.lru_cache(maxsize=4)
+def seccomp_filter(program):
+    """The workers' seccomp filter (tests/support/worker_seccomp.cpp) as a file of BPF, written
+    once per grader by `program`; None without the program (no libseccomp) or if it fails."""
+    if not program or not os.access(program, os.X_OK):
+        return None
+    run = subprocess.run([program], capture_output=True)
+    if run.returncode != 0 or not run.stdout or len(run.stdout) % 8:
+        return None
+    handle, path = tempfile.mkstemp(prefix="springlab-seccomp-", suffix=".bpf")
+    with os.fdopen(handle, "wb") as out:
+        out.write(run.stdout)
+    return path
+
+
+def isolation(seccomp=None):
     """One line for reports: how workers are isolated on this machine."""
     if bubblewrap():
-        return "workers run in bubblewrap (own user, PID, network and mount namespaces)"
+        extra = " and a seccomp filter" if seccomp_filter(seccomp) else " (no seccomp filter: libseccomp missing)"
+        return "workers run in bubblewrap (own user, PID, network and mount namespaces)" + extra
     why = "bwrap is not installed" if shutil.which("bwrap") is None else "bwrap cannot create namespaces here"
     return (f"workers run as their own user with limits only ({why}; install bubblewrap, or allow user "
             f"namespaces, for namespaces)")
@@ -102,12 +118,15 @@ class JudgedRun:
     seconds: float
 
 
-def worker_argv(binary, args, trace_fd, env):
-    """bwrap around the worker program: the program is bound read-only at /sandbox/test. Without
+def worker_argv(binary, args, trace_fd, env, seccomp_fd=None):
+    """bwrap around the worker program: the program is bound read-only at /sandbox/test, and
+    the seccomp filter read from seccomp_fd (if any) is loaded just before it starts. Without
     bubblewrap, the program itself (run_judged gives it a clean environment)."""
     if bubblewrap() is None:
         return [str(binary), *args]
     argv = [bubblewrap(), "--unshare-all", "--die-with-parent", "--new-session", "--clearenv"]
+    if seccomp_fd is not None:
+        argv += ["--seccomp", str(seccomp_fd)]
     for key, value in {**WORKER_ENV, **env, "SPRINGLAB_CALL_TRACE_FD": str(trace_fd)}.items():
         argv += ["--setenv", key, value]
     argv += ["--ro-bind", "/usr", "/usr", "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64",
@@ -116,11 +135,19 @@ def worker_argv(binary, args, trace_fd, env):
     return argv
 
 
-def run_judged(judge, worker, args, sandbox: Sandbox, env, slot=0):
-    """Run `judge args` and `worker args` side by side, joined by the trace pipe; the judge's
-    report, the worker's fate. The time limit covers both; both end before this returns."""
+# Every worker's command line, whatever test it runs (the test comes on its standard input).
+WORKER_ARGS = ["--gtest_color=no"]
+
+
+def run_judged(judge, worker, test, sandbox: Sandbox, env, slot=0, seccomp=None):
+    """Run the test named `test` in the judge and the worker side by side, joined by the trace
+    pipe; the judge's report, the worker's fate. The judge has the name on its command line;
+    the worker reads it from standard input (worker_main.cpp), so its command line and
+    environment are the same for every test. The time limit covers both; both end before
+    this returns. `seccomp`: the program that writes the workers' seccomp filter."""
     trace_r, trace_w = os.pipe()
     report_r, report_w = os.pipe()
+    name_r, name_w = os.pipe()
     limits = sandbox.limits()
 
     def limited():
@@ -132,7 +159,7 @@ def run_judged(judge, worker, args, sandbox: Sandbox, env, slot=0):
     start = time.monotonic()
     with tempfile.TemporaryFile() as judge_log, tempfile.TemporaryFile() as worker_log:
         judge_proc = subprocess.Popen(
-            [judge, *args, f"--springlab-report=/dev/fd/{report_w}"], env={**base_env, "SPRINGLAB_CALL_TRACE_FD": str(trace_r)},
+            [judge, f"--gtest_filter={test}", *WORKER_ARGS, f"--springlab-report=/dev/fd/{report_w}"], env={**base_env, "SPRINGLAB_CALL_TRACE_FD": str(trace_r)},
             stdin=subprocess.DEVNULL, stdout=judge_log, stderr=subprocess.STDOUT, pass_fds=(trace_r, report_w),
             process_group=0, preexec_fn=limited)
         uid = worker_uid(slot) if root else None
@@ -140,12 +167,19 @@ def run_judged(judge, worker, args, sandbox: Sandbox, env, slot=0):
         if uid is not None:
             os.chown(private, uid, uid)
         plain = {**WORKER_ENV, **env, "HOME": private, "TMPDIR": private, "SPRINGLAB_CALL_TRACE_FD": str(trace_w)}
+        bpf = seccomp_filter(seccomp) if bubblewrap() else None
+        seccomp_fd = os.open(bpf, os.O_RDONLY) if bpf else None
         worker_proc = subprocess.Popen(
-            worker_argv(worker, args, trace_w, env), env={"PATH": "/usr/bin:/bin"} if bubblewrap() else plain,
-            cwd=private, stdin=subprocess.DEVNULL, stdout=worker_log, stderr=subprocess.STDOUT, pass_fds=(trace_w,),
+            worker_argv(worker, WORKER_ARGS, trace_w, env, seccomp_fd),
+            env={"PATH": "/usr/bin:/bin"} if bubblewrap() else plain, cwd=private, stdin=name_r, stdout=worker_log,
+            stderr=subprocess.STDOUT, pass_fds=(trace_w,) if seccomp_fd is None else (trace_w, seccomp_fd),
             process_group=0, preexec_fn=limited, user=uid, group=uid, extra_groups=[] if uid else None)
-        for fd in (trace_r, trace_w, report_w):
-            os.close(fd)
+        for fd in (trace_r, trace_w, report_w, name_r, seccomp_fd):
+            if fd is not None:
+                os.close(fd)
+        # A test name is far below a pipe's buffer: this write never waits for the worker.
+        os.write(name_w, test.encode() + b"\n")
+        os.close(name_w)
         deadline = start + sandbox.timeout
         report = read_until_closed(report_r, deadline, cap=1 << 22)
         os.close(report_r)

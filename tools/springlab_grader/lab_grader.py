@@ -41,8 +41,10 @@ class LabGrader:
     in one exercise costs that exercise's points alone. A file that does not compile, or that
     the integrity checks flag, is the skeleton's: its exercises score 0, the rest is graded."""
 
-    def __init__(self, cache, lab, work, sandbox, compile_sandbox, jobs, seed, budget=None, slot=0):
+    def __init__(self, cache, lab, work, sandbox, compile_sandbox, jobs, seed, budget=None, slot=0,
+                 call_check=True):
         self.cache, self.lab, self.work, self.jobs, self.seed = cache, lab, work, jobs, seed
+        self.call_check = call_check  # off only to test the sandbox behind it (sabotage.py)
         self.slot = slot  # which sandbox user this submission's workers run as
         self.sandbox, self.compile_sandbox = sandbox, compile_sandbox
         self.build = cache.lab(lab, sandbox)
@@ -90,7 +92,8 @@ class LabGrader:
         if per_file:
             symbols = {n: reference_symbols(solution[n]) for n in skeleton}
             others = {n: set().union(*(s for m, s in symbols.items() if m != n)) for n in skeleton}
-        for name in integrity.find_cheats(list(objects.values()), self.work, build, lab, notes, others):
+        for name in integrity.find_cheats(list(objects.values()), self.work, build, lab, notes, others,
+                                          call_check=self.call_check):
             objects.pop(name, None)
             reasons[name] = f"{name} was replaced by the released skeleton's file (see the note)"
 
@@ -155,9 +158,10 @@ class LabGrader:
         for ex, t in self.wanted_tests():
             by_file.setdefault(owner.get(ex["id"]), []).append(t["name"])
         functions = self.build.link.exercise_functions()
-        from .judged_run import bubblewrap, isolation
-        if bubblewrap() is None:
-            self.notes.append(f"sandbox: {isolation()}")
+        from .judged_run import bubblewrap, isolation, seccomp_filter
+        seccomp = self.build.link.worker_seccomp
+        if bubblewrap() is None or not seccomp_filter(seccomp):
+            self.notes.append(f"sandbox: {isolation(seccomp)}")
         workers, failed = {}, {}
         # What each student object defines, read once for all files (nm is slow to start).
         defined = integrity.symbols_by_file([objects[n] for n in by_file if n in objects])
@@ -193,7 +197,8 @@ class LabGrader:
                                what=f"exercise file ({key})")
             mark = time.monotonic()
             for r in grade_judged(self.build.link.judges[key], str(binary), self.lab.manifest, self.seed,
-                                  self.sandbox, self.jobs, only=set(tests), budget=share, slot=self.slot):
+                                  self.sandbox, self.jobs, only=set(tests), budget=share, slot=self.slot,
+                                  seccomp=seccomp):
                 outcome[r.test["name"]] = r
             self.timing["test"] += time.monotonic() - mark
         return [outcome.get(t["name"]) or TestResult(ex, t, False, failed.get(t["name"], "not run"), 0.0)
@@ -362,7 +367,7 @@ def first_errors(output, lines=25):
 
 # ---- one submission --------------------------------------------------------------------------
 def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandbox, name=None, only=None,
-                     budgets=None, slot=0):
+                     budgets=None, slot=0, call_check=True):
     """Grade a submission (a folder or a zip: a labs/ folder, a whole repository, lab folders
     or the flat files of one lab). `only`: the one lab to grade (--lab), the others are left
     out of the result; `budgets`: {lab name: seconds of tests it may spend}."""
@@ -393,7 +398,8 @@ def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandb
             work.mkdir()
             os.chmod(work, 0o711)
             grader = LabGrader(cache, lab, work, sandbox, compile_sandbox, jobs, seed,
-                               budget=Budget(budgets.get(lab.name), parent=total), slot=slot)
+                               budget=Budget(budgets.get(lab.name), parent=total), slot=slot,
+                               call_check=call_check)
             grader.notes.extend(lab_notes)
             results.append(grader.grade(submitted))
         if not found_any:
@@ -417,6 +423,7 @@ class Session:
     budget_factor: float = BUDGET_FACTOR
     budget_floor: float = BUDGET_FLOOR
     budgets: dict = dataclasses.field(default_factory=dict)
+    call_check: bool = True     # integrity.FORBIDDEN_CALLS; off only to test the sandbox
 
     def prepare(self):
         """Find each lab's build (compile flags, link, test list) and its time budget (a
@@ -433,11 +440,12 @@ class Session:
     def grade(self, path, jobs, name=None, slot=0):
         self.prepare()
         return grade_submission(path, self.cache, self.labs, self.seed, jobs, self.sandbox, self.compile_sandbox,
-                                name=name, only=self.only, budgets=self.budgets, slot=slot)
+                                name=name, only=self.only, budgets=self.budgets, slot=slot,
+                                call_check=self.call_check)
 
 
 def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, memory_mb=4096, only=None,
-                  budget_factor=BUDGET_FACTOR, budget_floor=BUDGET_FLOOR):
+                  budget_factor=BUDGET_FACTOR, budget_floor=BUDGET_FLOOR, call_check=True):
     labs = discover_labs()
     if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
         raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
@@ -458,7 +466,8 @@ def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, me
             compile_sandbox.drop_to = None
     if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
         raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
-    return Session(labs, cache, sandbox, compile_sandbox, draw_seed(seed), only, budget_factor, budget_floor)
+    return Session(labs, cache, sandbox, compile_sandbox, draw_seed(seed), only, budget_factor, budget_floor,
+                   call_check=call_check)
 
 
 def grade_class(session, entries, out, jobs, progress=sys.stderr):
