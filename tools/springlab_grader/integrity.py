@@ -148,7 +148,8 @@ def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
         reached = forbidden_calls(undefined_in[str(obj)]) if call_check else []
         if reached:
             what = sorted({w for _, w in reached})
-            flagged.setdefault(name, f"calls {', '.join(demangle([s for s, _ in reached])[:3])}, which reach "
+            called = sorted({d.split("(")[0] for d in demangle([s for s, _ in reached])})
+            flagged.setdefault(name, f"calls {', '.join(called[:3])}, which reach "
                                f"{' and '.join(what)}: exercise code may compute, allocate and print, nothing more")
         foreign = defined_in[str(obj)] & (others or {}).get(name, set())
         if foreign:
