@@ -183,6 +183,14 @@ class TimeBudget(unittest.TestCase):
         lab_b.spend(1.5)  # the submission's 10 s: 9 + 1.5
         self.assertIs(lab_b.exhausted(), total)
 
+    def test_shares_follow_the_reference_time_not_the_test_count(self):
+        reference = {"Slow.Drape": 6.8, **{f"Quick.T{k}": 0.01 for k in range(10)}}
+        rule = gtest_runner.BudgetRule(120.0, 10.0, reference)
+        slow = rule.share(["Slow.Drape"], 2)
+        quick = rule.share([f"Quick.T{k}" for k in range(10)], 2)
+        self.assertGreater(slow, quick + 60)
+        self.assertAlmostEqual(slow + quick, rule.limit)
+
     def test_spent_budget_fails_the_remaining_tests(self):
         m = json.loads(json.dumps(MANIFEST))
         budget = gtest_runner.Budget(1)

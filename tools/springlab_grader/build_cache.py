@@ -270,10 +270,10 @@ class Cache:
             raise GradeError(f"building the grading build {self.path} failed (the instructor tree does not build):\n"
                              + tail(run.stdout + run.stderr, 40))
 
-    def reference_seconds(self, lab, sandbox):
-        """The reference's own grading time for a lab (the sum of its tests' seconds), measured
-        once on the trusted side and kept in grading/<name>_reference_time.json beside the
-        link, keyed by the reference program's bytes; None when the build has no reference."""
+    def reference_times(self, lab, sandbox):
+        """The reference's own grading time for a lab ({test: seconds}), measured once on the
+        trusted side and kept in grading/<name>_reference_time.json beside the link, keyed by
+        the reference program's bytes; None when the build has no reference."""
         program = self.lab(lab, sandbox).link.reference_program
         if not program or not os.access(program, os.X_OK):
             return None
@@ -282,18 +282,21 @@ class Cache:
         with self.lock:
             try:
                 data = json.loads(record.read_text())
-                if data.get("program_sha256") == digest and isinstance(data.get("seconds"), (int, float)):
-                    return float(data["seconds"])
+                per_test = data.get("per_test")
+                if (data.get("program_sha256") == digest and isinstance(per_test, dict)
+                        and all(isinstance(v, (int, float)) for v in per_test.values())):
+                    return {str(k): float(v) for k, v in per_test.items()}
             except (OSError, ValueError):
                 pass
             results = grade_binary(program, lab.manifest, 1, sandbox, 1)
-            seconds = sum(r.seconds for r in results)
+            per_test = {r.test["name"]: r.seconds for r in results}
             temporary = record.with_name(f"{record.name}.{os.getpid()}")
-            temporary.write_text(json.dumps({"program_sha256": digest, "seconds": seconds,
+            temporary.write_text(json.dumps({"program_sha256": digest, "seconds": sum(per_test.values()),
+                                             "per_test": per_test,
                                              "passed": sum(r.passed for r in results),
                                              "tests": len(results)}, indent=1) + "\n")
             os.replace(temporary, record)
-            return seconds
+            return per_test
 
     def link_file(self, lab):
         return self.path / "grading" / f"{lab.name}_link.json"

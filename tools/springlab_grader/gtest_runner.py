@@ -144,6 +144,24 @@ class Budget:
                 f"so this test was not run")
 
 
+@dataclasses.dataclass
+class BudgetRule:
+    """A lab's time budget: `floor` seconds plus `factor` times the reference's own time on its
+    tests, shared among its exercise files: each file gets an equal part of the floor plus
+    `factor` times the reference's time on that file's tests. Shares follow the reference's
+    time, not the number of tests: one slow simulation test is not a dozen quick ones."""
+    floor: float
+    factor: float
+    reference: dict  # test name -> the reference's seconds
+
+    @property
+    def limit(self):
+        return self.floor + self.factor * sum(self.reference.values())
+
+    def share(self, tests, files):
+        return self.floor / max(1, files) + self.factor * sum(self.reference.get(t, 0.0) for t in tests)
+
+
 def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=None, only=None, budget=None):
     """Run every manifest test the binary holds, side by side; results in manifest order.
     `only`: names of the tests to run (the others are left out); `budget`: a Budget, after

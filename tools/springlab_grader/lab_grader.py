@@ -20,7 +20,7 @@ import time
 from . import integrity
 from .build_cache import Cache
 from .errors import GradeError
-from .gtest_runner import Budget, draw_seed, grade_binary, grade_judged
+from .gtest_runner import Budget, BudgetRule, draw_seed, grade_binary, grade_judged
 from .labs import ROOT, discover_labs, exercises_in
 from .reports import write_submission
 from .results import Graded, LabResult, TestResult, failed_lab
@@ -29,8 +29,10 @@ from .submission import SOURCE_SUFFIXES, collect_sources, locate_labs, unpack
 
 COMPILE_TIMEOUT = 180.0
 # The time budget of a lab: BUDGET_FLOOR seconds plus BUDGET_FACTOR times the reference's own
-# grading time (the sum of its tests' seconds); a submission's is the sum of its labs'.
-BUDGET_FACTOR = 5.0
+# grading time (the sum of its tests' seconds), shared among its files (BudgetRule); a
+# submission's is the sum of its labs'. A judged test runs two processes and streams a trace,
+# about twice the reference's one process: 10 leaves five times that of slack (a loaded machine).
+BUDGET_FACTOR = 10.0
 BUDGET_FLOOR = 120.0
 
 
@@ -42,13 +44,14 @@ class LabGrader:
     the integrity checks flag, is the skeleton's: its exercises score 0, the rest is graded."""
 
     def __init__(self, cache, lab, work, sandbox, compile_sandbox, jobs, seed, budget=None, slot=0,
-                 call_check=True):
+                 call_check=True, budget_rule=None):
         self.cache, self.lab, self.work, self.jobs, self.seed = cache, lab, work, jobs, seed
         self.call_check = call_check  # off only to test the sandbox behind it (sabotage.py)
         self.slot = slot  # which sandbox user this submission's workers run as
         self.sandbox, self.compile_sandbox = sandbox, compile_sandbox
         self.build = cache.lab(lab, sandbox)
         self.budget = budget
+        self.budget_rule = budget_rule  # how the lab's budget is shared among its files
         self.notes = []
         self.links = 0
         self.timing = {"compile": 0.0, "link": 0.0, "test": 0.0}
@@ -183,7 +186,6 @@ class LabGrader:
                 workers[name] = (members, tests)
         binaries = self.link_all({k: m for k, (m, _) in workers.items()}, worker=True)
         outcome = {}
-        total = sum(len(tests) for _, tests in workers.values()) or 1
         for key, (_, tests) in workers.items():
             binary, error = binaries[key]
             if error:
@@ -192,8 +194,8 @@ class LabGrader:
             # Each file's tests have their share of the lab's budget: one that hangs cannot
             # spend the time of the others.
             share = None
-            if self.budget is not None and self.budget.limit is not None:
-                share = Budget(self.budget.limit * len(tests) / total, parent=self.budget.parent,
+            if self.budget is not None and self.budget_rule is not None:
+                share = Budget(self.budget_rule.share(tests, len(workers)), parent=self.budget.parent,
                                what=f"exercise file ({key})")
             mark = time.monotonic()
             for r in grade_judged(self.build.link.judges[key], str(binary), self.lab.manifest, self.seed,
@@ -370,7 +372,7 @@ def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandb
                      budgets=None, slot=0, call_check=True):
     """Grade a submission (a folder or a zip: a labs/ folder, a whole repository, lab folders
     or the flat files of one lab). `only`: the one lab to grade (--lab), the others are left
-    out of the result; `budgets`: {lab name: seconds of tests it may spend}."""
+    out of the result; `budgets`: {lab name: its BudgetRule, or None for no budget}."""
     submission = pathlib.Path(submission)
     if not submission.exists():
         raise GradeError(f"{submission}: no such file or folder")
@@ -382,7 +384,7 @@ def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandb
     os.chmod(base, 0o711)  # the sandbox user may enter known paths, never list them
     budgets = budgets or {}
     graded_labs = [lab for lab in labs if only is None or only in (lab.name, lab.dir)]
-    limits = [budgets.get(lab.name) for lab in graded_labs]
+    limits = [budgets[lab.name].limit if budgets.get(lab.name) else None for lab in graded_labs]
     total = Budget(sum(limits) if limits and None not in limits else None, what="submission")
     try:
         root = unpack(submission, base, notes)
@@ -398,8 +400,9 @@ def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandb
             work.mkdir()
             os.chmod(work, 0o711)
             grader = LabGrader(cache, lab, work, sandbox, compile_sandbox, jobs, seed,
-                               budget=Budget(budgets.get(lab.name), parent=total), slot=slot,
-                               call_check=call_check)
+                               budget=Budget(budgets[lab.name].limit if budgets.get(lab.name) else None,
+                                             parent=total),
+                               slot=slot, call_check=call_check, budget_rule=budgets.get(lab.name))
             grader.notes.extend(lab_notes)
             results.append(grader.grade(submitted))
         if not found_any:
@@ -433,9 +436,9 @@ class Session:
                 continue
             self.cache.lab(lab, self.sandbox)
             if lab.name not in self.budgets and self.budget_factor > 0:
-                reference = self.cache.reference_seconds(lab, self.sandbox)
+                reference = self.cache.reference_times(lab, self.sandbox)
                 self.budgets[lab.name] = (None if reference is None
-                                          else self.budget_floor + self.budget_factor * reference)
+                                          else BudgetRule(self.budget_floor, self.budget_factor, reference))
 
     def grade(self, path, jobs, name=None, slot=0):
         self.prepare()
