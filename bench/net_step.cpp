@@ -61,9 +61,9 @@ BENCHMARK(NetFrame)
 // run from the scene's start. Counters: ms_per_frame (CPU time / 300 frames) and drape_m (the
 // lowest point after 5 s), to compare with the full implicit solve's drape.
 //   NetFabricDrape/r/method/iterations/substeps/warm: method 0 implicit_euler, 1 xpbd,
-//     2 projective_dynamics (iterations, substeps and XPBD's warm start: the scene's
-//     integrator_options).
-const char* const kDrapeMethods[] = {"implicit_euler", "xpbd", "projective_dynamics"};
+//     2 projective_dynamics, 3 implicit_euler_blocks (iterations, substeps and XPBD's warm
+//     start: the scene's integrator_options).
+const char* const kDrapeMethods[] = {"implicit_euler", "xpbd", "projective_dynamics", "implicit_euler_blocks"};
 
 void NetFabricDrape(benchmark::State& bench) {
   const int r = static_cast<int>(bench.range(0));
@@ -97,12 +97,16 @@ void NetFabricDrape(benchmark::State& bench) {
 BENCHMARK(NetFabricDrape)
     ->ArgNames({"r", "method", "iterations", "substeps", "warm"})
     ->Args({32, 0, 1, 1, 0})
+    ->Args({32, 3, 1, 1, 0})
+    ->Args({32, 1, 10, 1, 0})
     ->Args({32, 1, 1, 16, 0})
     ->Args({32, 1, 1, 8, 1})
     ->Args({32, 1, 1, 16, 1})
     ->Args({32, 2, 1, 1, 0})
     ->Args({32, 2, 2, 1, 0})
     ->Args({64, 0, 1, 1, 0})
+    ->Args({64, 3, 1, 1, 0})
+    ->Args({64, 1, 10, 1, 0})
     ->Args({64, 1, 1, 32, 0})
     ->Args({64, 1, 1, 64, 0})
     ->Args({64, 1, 1, 16, 1})
