@@ -2,7 +2,8 @@
 // scene's springs, built on exercise 2.11. Each spring is a distance constraint of compliance
 // 1/k and constraint damping from its kd, so with enough iterations its equilibrium is the
 // force model's. External forces once per step; per substep of h = dt / substeps: predict, project
-// every constraint `iterations` times (Gauss-Seidel, multipliers from zero), v = (x - x_old)/h.
+// every constraint `iterations` times (Gauss-Seidel in colour order, multipliers from zero or,
+// with the option warm_start, from the last substep's), v = (x - x_old)/h.
 // Contacts, stretch limiting and self-collision stay in the scene's afterStep (once per step).
 #include <algorithm>
 #include <bit>
@@ -24,8 +25,11 @@ class Xpbd final : public Integrator {
   static constexpr std::string_view kName = "xpbd";
   std::string name() const override { return std::string(kName); }
   int order() const override { return 1; }
-  // Stable at any dt: positions are projected, never pushed by a stiff force.
+  // Stable at any dt: positions are projected, never pushed by a stiff force (with the
+  // multipliers from zero, the default; the warm start is not, see warmStartFromTensions).
   double stabilityConstant() const override { return INFINITY; }
+  // A restarted scene starts without tensions.
+  void reset() override { tension_.clear(); }
 
   std::vector<std::string> optionNames() const override { return {"iterations", "substeps", "warm_start"}; }
   void setOption(const std::string& option, int value) override {
@@ -95,6 +99,7 @@ class Xpbd final : public Integrator {
   // the last colour, which keeps the order valid Gauss-Seidel, only less overlapped.
   void colour(const Simulation& sim) {
     const std::size_t springs = sim.springs.size();
+    tension_.clear();  // they belonged to the old springs
     ends_.resize(2 * springs);
     std::vector<std::uint64_t> used(static_cast<std::size_t>(sim.numOfMasses()), 0);
     std::vector<int> colourOf(springs);
