@@ -60,14 +60,16 @@ BENCHMARK(NetFrame)
 // limit, dt = 1/120 s, 2 steps per 1/60 s frame), one thread: one iteration is the whole 5 s
 // run from the scene's start. Counters: ms_per_frame (CPU time / 300 frames) and drape_m (the
 // lowest point after 5 s), to compare with the full implicit solve's drape.
-//   NetFabricDrape/r/method/iterations/substeps: method 0 implicit_euler, 1 xpbd,
-//     2 projective_dynamics (iterations and substeps: the scene's integrator_options).
-const char* const kDrapeMethods[] = {"implicit_euler", "xpbd", "projective_dynamics"};
+//   NetFabricDrape/r/method/iterations/substeps/warm: method 0 implicit_euler, 1 xpbd,
+//     2 projective_dynamics, 3 implicit_euler_blocks (iterations, substeps and XPBD's warm
+//     start: the scene's integrator_options).
+const char* const kDrapeMethods[] = {"implicit_euler", "xpbd", "projective_dynamics", "implicit_euler_blocks"};
 
 void NetFabricDrape(benchmark::State& bench) {
   const int r = static_cast<int>(bench.range(0));
   const std::string method = kDrapeMethods[bench.range(1)];
   const std::string iterations = std::to_string(bench.range(2)), substeps = std::to_string(bench.range(3));
+  const int warmStart = static_cast<int>(bench.range(4));
   useThreads(1);
   double drape = 0.0, cpu = 0.0;
   constexpr int kSteps = 600, kFrames = 300;
@@ -77,6 +79,7 @@ void NetFabricDrape(benchmark::State& bench) {
                                                        "integrator_options.xpbd.iterations=" + iterations,
                                                        "integrator_options.xpbd.substeps=" + substeps,
                                                        "integrator_options.projective_dynamics.iterations=" + iterations});
+    scene.sim->integratorOptions["xpbd"]["warm_start"] = warmStart;
     scene.sim->setIntegrator(registry().makeIntegrator(method));
     const std::clock_t start = std::clock();
     bench.ResumeTiming();
@@ -92,17 +95,23 @@ void NetFabricDrape(benchmark::State& bench) {
   bench.counters["drape_m"] = drape;
 }
 BENCHMARK(NetFabricDrape)
-    ->ArgNames({"r", "method", "iterations", "substeps"})
-    ->Args({32, 0, 1, 1})
-    ->Args({32, 1, 40, 1})
-    ->Args({32, 1, 1, 16})
-    ->Args({32, 2, 1, 1})
-    ->Args({32, 2, 2, 1})
-    ->Args({64, 0, 1, 1})
-    ->Args({64, 1, 1, 32})
-    ->Args({64, 1, 1, 64})
-    ->Args({64, 2, 1, 1})
-    ->Args({64, 2, 2, 1})
+    ->ArgNames({"r", "method", "iterations", "substeps", "warm"})
+    ->Args({32, 0, 1, 1, 0})
+    ->Args({32, 3, 1, 1, 0})
+    ->Args({32, 1, 10, 1, 0})
+    ->Args({32, 1, 1, 16, 0})
+    ->Args({32, 1, 1, 8, 1})
+    ->Args({32, 1, 1, 16, 1})
+    ->Args({32, 2, 1, 1, 0})
+    ->Args({32, 2, 2, 1, 0})
+    ->Args({64, 0, 1, 1, 0})
+    ->Args({64, 3, 1, 1, 0})
+    ->Args({64, 1, 10, 1, 0})
+    ->Args({64, 1, 1, 32, 0})
+    ->Args({64, 1, 1, 64, 0})
+    ->Args({64, 1, 1, 16, 1})
+    ->Args({64, 2, 1, 1, 0})
+    ->Args({64, 2, 2, 1, 0})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 

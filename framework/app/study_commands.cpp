@@ -49,6 +49,7 @@ int chartWorkPrecision(const Registry& registry, const StudyCommandOptions& o) {
   wo.integrators = o.integrators;
   if (o.time > 0.0) wo.duration = o.time;
   if (o.levels > 0) wo.levels = o.levels;
+  if (o.largestDt > 0.0) wo.largestDt = o.largestDt;
   wo.repeats = o.repeats;
   wo.threads = o.threads;
   const studies::WorkPrecision study = studies::workPrecision(registry, doc, wo);
@@ -172,6 +173,9 @@ std::pair<CLI::App*, CLI::App*> addStudyCommands(CLI::App& app, StudyCommandOpti
   chart->add_option("--integrators", o.integrators, "integrators to compare (default: all registered)")->delimiter(',');
   chart->add_option("--repeats", o.repeats, "work-precision: timed runs after the warm-up (median)");
   chart->add_option("--levels", o.levels, "work-precision: dt values per integrator");
+  chart->add_option("--largest-dt", o.largestDt,
+                    "work-precision: the first dt in s (default: about twice RK4's limit); a frame's dt shows the methods stable there")
+      ->check(CLI::PositiveNumber);
   chart->add_option("--observable", o.observable, "resolution: the scene observable to compare (default: its first)");
   chart->add_option("--tol", o.tolerance, "resolution: relative tolerance");
   chart->add_option("--resolutions", o.resolutions, "resolution: values of the resolution key")->delimiter(',');

@@ -21,6 +21,7 @@ struct StudyCommandOptions {
   int threads = 0;
   int repeats = 3;
   int levels = 0;                   // 0: the study's default
+  double largestDt = 0.0;           // s, work-precision's first dt; 0: the study's default
   std::string observable;
   double tolerance = 0.01;
   std::vector<int> resolutions;

@@ -174,6 +174,7 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
         return;
       }
       const double error = run.stable ? relativeError(observableSeries(run, observable), refSeries) : INFINITY;
+      c.error = error;  // kept when no rung meets the tolerance: the finest rung's error
       if (error <= half) {
         c.dt = spec.dt;
         c.error = error;
@@ -182,7 +183,8 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
       }
     }
     std::ostringstream note;
-    note << "no dt down to " << interval / static_cast<double>(per(first + o.levels - 1)) << " s met the tolerance";
+    note << "no dt down to " << interval / static_cast<double>(per(first + o.levels - 1)) << " s met the tolerance (error "
+         << c.error << " there)";
     c.note = note.str();
   }, o.progress ? "advisor: integrators" : "");
 

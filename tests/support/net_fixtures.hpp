@@ -1,7 +1,11 @@
 #pragma once
 // Small net scenes for tests, built in code so each test states the physics it sets up.
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <springlab/diagnostics.hpp>
 #include <springlab/registry.hpp>
@@ -124,3 +128,63 @@ class MatchesReference : public springlab::testing::MatchesReferenceFixture<300>
 };
 
 }  // namespace springlab::net
+
+// ---- the fabric and the drape, shared by Xpbd.* and ProjectiveDynamics.* (issue 17) ---------
+namespace springlab::testing {
+
+// The light fabric of scenes/net_hanging.json (0.2 kg/m^2, k = 400/40/2 N/m, 10 % stretch
+// limit), r x r, held at two corners, without its colliders.
+inline net::NetParameters fabric(int r) {
+  net::NetParameters p = quietNet(r);
+  p.massModel = net::MassModel::Density;
+  p.arealDensity = 0.2;
+  p.springs[SpringKind::Structural] = {true, 400.0, 0.3};
+  p.springs[SpringKind::Shear] = {true, 40.0, 0.1};
+  p.springs[SpringKind::Bend] = {true, 2.0, 0.02};
+  p.pins = {net::Pin::Corner00, net::Pin::Corner10};
+  p.gravitation = Vec3(0.0, -9.81, 0.0);
+  p.airFriction = 0.05;
+  p.stretchLimiting = true;
+  return p;
+}
+
+// A small heavy cloth (the thesis' material) hanging in its own plane from two corners, with
+// air friction to bring it to rest.
+inline net::NetParameters hangingCloth(int r) {
+  net::NetParameters p = thesisCloth();
+  p.resolution = r;
+  p.airFriction = 2.0;
+  return p;
+}
+
+// The integrator `name` with integer options set as a scene's "integrator_options" would.
+inline std::unique_ptr<Integrator> netIntegrator(const std::string& name,
+                                                 const std::vector<std::pair<std::string, int>>& options = {}) {
+  std::unique_ptr<Integrator> integrator = netRegistry().makeIntegrator(name);
+  for (const auto& [option, value] : options) integrator->setOption(option, value);
+  return integrator;
+}
+
+// The drape: the height of the lowest mass, m.
+inline double lowestPoint(const Simulation& sim) {
+  double y = INFINITY;
+  for (const Vec3& x : sim.state.pos) y = std::min(y, x.y());
+  return y;
+}
+
+// The largest net force of the force model on a free mass at sim's positions, at rest,
+// relative to that mass's weight.
+inline double largestForceOverWeight(Simulation& sim) {
+  State still = sim.state;
+  for (Vec3& v : still.vel) v.setZero();
+  std::vector<Vec3> f;
+  sim.evaluateForces(still, f);
+  double worst = 0.0;
+  for (int i = 0; i < sim.numOfMasses(); ++i) {
+    if (sim.inverseMass(i) == 0.0) continue;
+    worst = std::max(worst, f[i].norm() / (sim.masses[i].m * sim.gravitation.norm()));
+  }
+  return worst;
+}
+
+}  // namespace springlab::testing

@@ -12,18 +12,14 @@ namespace {
 
 using ProjectiveDynamics = springlab::testing::Seeded;
 using springlab::testing::netRegistry;
+using springlab::testing::fabric;
+using springlab::testing::hangingCloth;
+using springlab::testing::largestForceOverWeight;
+using springlab::testing::lowestPoint;
 using springlab::testing::quietNet;
 
 std::unique_ptr<Integrator> projective(int iterations) {
-  std::unique_ptr<Integrator> integrator = netRegistry().makeIntegrator("projective_dynamics");
-  integrator->setOption("iterations", iterations);
-  return integrator;
-}
-
-double lowestPoint(const Simulation& sim) {
-  double y = INFINITY;
-  for (const Vec3& x : sim.state.pos) y = std::min(y, x.y());
-  return y;
+  return springlab::testing::netIntegrator("projective_dynamics", {{"iterations", iterations}});
 }
 
 TEST_F(ProjectiveDynamics, ProjectionHasTheRestLengthAlongTheSpring) {
@@ -43,9 +39,7 @@ TEST_F(ProjectiveDynamics, FixedPointIsTheStaticEquilibrium) {
   // A heavy cloth hanging in its plane from two corners, brought to rest by air friction:
   // where projective dynamics stops, the force model's springs must balance gravity, and one
   // more step must leave the cloth where it is.
-  NetParameters p = springlab::testing::thesisCloth();
-  p.resolution = integer(5, 8);
-  p.airFriction = 2.0;
+  const NetParameters p = hangingCloth(integer(5, 8));
   Net net(3, p), reference(3, p);
   net.setIntegrator(projective(integer(10, 20)));
   reference.setIntegrator(netRegistry().makeIntegrator("implicit_euler"));
@@ -53,14 +47,7 @@ TEST_F(ProjectiveDynamics, FixedPointIsTheStaticEquilibrium) {
     net.operate(1.0 / 60.0);
     reference.operate(1.0 / 60.0);
   }
-  State still = net.state;
-  for (Vec3& v : still.vel) v.setZero();
-  std::vector<Vec3> f;
-  net.evaluateForces(still, f);
-  double worst = 0.0;
-  for (int i = 0; i < net.numOfMasses(); ++i) {
-    if (net.inverseMass(i) != 0.0) worst = std::max(worst, f[i].norm() / (net.masses[i].m * 9.81));
-  }
+  const double worst = largestForceOverWeight(net);
   EXPECT_LT(worst, 0.01) << "at projective dynamics' rest state a mass still feels " << 100 * worst
                          << " % of its weight: the fixed point must be the force model's equilibrium " << seedText();
   EXPECT_NEAR(lowestPoint(net), lowestPoint(reference), 0.005 * std::abs(lowestPoint(reference)))
@@ -73,18 +60,7 @@ TEST_F(ProjectiveDynamics, FixedPointIsTheStaticEquilibrium) {
 }
 
 TEST_F(ProjectiveDynamics, StableOnTheFabricAtASixtiethOfASecond) {
-  // The light fabric of scenes/net_hanging.json (0.2 kg/m^2, k = 400/40/2 N/m, 10 % stretch
-  // limit), held at two corners, without its colliders.
-  NetParameters p = quietNet(integer(12, 16));
-  p.massModel = MassModel::Density;
-  p.arealDensity = 0.2;
-  p.springs[SpringKind::Structural] = {true, 400.0, 0.3};
-  p.springs[SpringKind::Shear] = {true, 40.0, 0.1};
-  p.springs[SpringKind::Bend] = {true, 2.0, 0.02};
-  p.pins = {Pin::Corner00, Pin::Corner10};
-  p.gravitation = Vec3(0.0, -9.81, 0.0);
-  p.airFriction = 0.05;
-  p.stretchLimiting = true;
+  const NetParameters p = fabric(integer(12, 16));  // scenes/net_hanging.json's light fabric
   Net net(3, p);
   net.setIntegrator(projective(integer(1, 10)));
   try {

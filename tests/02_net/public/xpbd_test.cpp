@@ -12,16 +12,14 @@ namespace {
 
 using Xpbd = springlab::testing::Seeded;
 using springlab::testing::netRegistry;
+using springlab::testing::fabric;
+using springlab::testing::hangingCloth;
+using springlab::testing::largestForceOverWeight;
 using springlab::testing::quietNet;
+using springlab::testing::netIntegrator;
+using springlab::testing::lowestPoint;
 
 constexpr double kPi = 3.14159265358979323846;
-
-// The integrator `name` with integer options set as a scene's "integrator_options" would.
-std::unique_ptr<Integrator> method(const std::string& name, const std::vector<std::pair<std::string, int>>& options = {}) {
-  std::unique_ptr<Integrator> integrator = netRegistry().makeIntegrator(name);
-  for (const auto& [option, value] : options) integrator->setOption(option, value);
-  return integrator;
-}
 
 // One mass m on one spring (k, L0, no damper) to a pinned mass at the origin, no gravity.
 class MassOnConstraint final : public Simulation {
@@ -42,51 +40,6 @@ class MassOnConstraint final : public Simulation {
     f[1] += masses[1].m * gravitation;
   }
 };
-
-// The light fabric of scenes/net_hanging.json (0.2 kg/m^2, k = 400/40/2 N/m, 10 % stretch
-// limit), r x r, held at two corners, without its colliders.
-NetParameters fabric(int r) {
-  NetParameters p = quietNet(r);
-  p.massModel = MassModel::Density;
-  p.arealDensity = 0.2;
-  p.springs[SpringKind::Structural] = {true, 400.0, 0.3};
-  p.springs[SpringKind::Shear] = {true, 40.0, 0.1};
-  p.springs[SpringKind::Bend] = {true, 2.0, 0.02};
-  p.pins = {Pin::Corner00, Pin::Corner10};
-  p.gravitation = Vec3(0.0, -9.81, 0.0);
-  p.airFriction = 0.05;
-  p.stretchLimiting = true;
-  return p;
-}
-
-// A small heavy cloth hanging in its own plane from two corners, air friction to bring it to rest.
-NetParameters hangingCloth(int r) {
-  NetParameters p = springlab::testing::thesisCloth();
-  p.resolution = r;
-  p.airFriction = 2.0;
-  return p;
-}
-
-double lowest(const Simulation& sim) {
-  double y = INFINITY;
-  for (const Vec3& x : sim.state.pos) y = std::min(y, x.y());
-  return y;
-}
-
-// The largest net force of the force model on a free mass at sim's positions, at rest,
-// relative to that mass's weight.
-double largestForceOverWeight(Simulation& sim) {
-  State still = sim.state;
-  for (Vec3& v : still.vel) v.setZero();
-  std::vector<Vec3> f;
-  sim.evaluateForces(still, f);
-  double worst = 0.0;
-  for (int i = 0; i < sim.numOfMasses(); ++i) {
-    if (sim.inverseMass(i) == 0.0) continue;
-    worst = std::max(worst, f[i].norm() / (sim.masses[i].m * sim.gravitation.norm()));
-  }
-  return worst;
-}
 
 TEST_F(Xpbd, ProjectionWithoutComplianceRestoresTheRestLength) {
   for (int t = 0; t < 50; ++t) {
@@ -118,7 +71,7 @@ TEST_F(Xpbd, ComplianceOneOverKOscillatesAtTheSpringFrequency) {
   const double period = 2 * kPi * std::sqrt(m / k), dt = period / 400;
   for (const int iterations : {1, 4}) {
     MassOnConstraint sim(m, k, L0);
-    sim.setIntegrator(method("xpbd", {{"iterations", iterations}}));
+    sim.setIntegrator(netIntegrator("xpbd", {{"iterations", iterations}}));
     sim.state.pos[1].x() = L0 * (1 + uniform(0.05, 0.2));
     // Upward crossings of the rest length over three periods: their spacing is the period.
     std::vector<double> crossings;
@@ -139,7 +92,7 @@ TEST_F(Xpbd, ComplianceOneOverKOscillatesAtTheSpringFrequency) {
   // alpha -> 0: the constraint is inextensible, the length stays L0 however the mass swings.
   MassOnConstraint stiff(m, 1e12, L0);
   stiff.gravitation = Vec3(0, -9.81, 0);
-  stiff.setIntegrator(method("xpbd", {{"iterations", 1}}));
+  stiff.setIntegrator(netIntegrator("xpbd", {{"iterations", 1}}));
   stiff.setBlowUpCheck(false);
   double worst = 0.0;
   for (int n = 0; n < 200; ++n) {
@@ -157,7 +110,7 @@ TEST_F(Xpbd, ReachesTheStaticDrapeOfTheForceModel) {
   const int r = integer(5, 8);
   Net reference(3, hangingCloth(r)), xpbd(3, hangingCloth(r));
   reference.setIntegrator(netRegistry().makeIntegrator("implicit_euler"));
-  xpbd.setIntegrator(method("xpbd", {{"iterations", 50}}));
+  xpbd.setIntegrator(netIntegrator("xpbd", {{"iterations", 50}}));
   for (int n = 0; n < 900; ++n) {
     reference.operate(1.0 / 60.0);
     xpbd.operate(1.0 / 60.0);
@@ -169,19 +122,19 @@ TEST_F(Xpbd, ReachesTheStaticDrapeOfTheForceModel) {
   // cloth stretched to five times its size, whatever the iteration count).
   EXPECT_LT(residual, 0.05) << "XPBD's rest state must be the force model's equilibrium; a mass there still feels "
                             << 100 * residual << " % of its weight " << seedText();
-  EXPECT_NEAR(lowest(xpbd), lowest(reference), 0.005 * std::abs(lowest(reference)))
+  EXPECT_NEAR(lowestPoint(xpbd), lowestPoint(reference), 0.005 * std::abs(lowestPoint(reference)))
       << "XPBD's drape (lowest point) must be the force model's within 0.5 % " << seedText();
 }
 
 TEST_F(Xpbd, StableOnTheFabricAtASixtiethOfASecond) {
   Net net(3, fabric(integer(12, 16)));
-  net.setIntegrator(method("xpbd", {{"iterations", integer(1, 10)}}));
+  net.setIntegrator(netIntegrator("xpbd", {{"iterations", integer(1, 10)}}));
   try {
     for (int n = 0; n < 120; ++n) net.operate(1.0 / 60.0);
   } catch (const BlowUp& e) {
     FAIL() << "XPBD must not blow up on the fabric at dt = 1/60 s: " << e.what() << " " << seedText();
   }
-  EXPECT_GT(lowest(net), -1.6) << "the fabric (1 m, 10 % stretch limit) cannot hang lower than about 1.5 m " << seedText();
+  EXPECT_GT(lowestPoint(net), -1.6) << "the fabric (1 m, 10 % stretch limit) cannot hang lower than about 1.5 m " << seedText();
 }
 
 TEST_F(Xpbd, ConservesMomentumOfAFreeNet) {
@@ -189,7 +142,7 @@ TEST_F(Xpbd, ConservesMomentumOfAFreeNet) {
   NetParameters p = quietNet(integer(4, 8));
   p.particleMass = uniform(0.05, 0.5);
   Net net(3, p);
-  net.setIntegrator(method("xpbd", {{"iterations", integer(1, 8)}, {"substeps", integer(1, 3)}}));
+  net.setIntegrator(netIntegrator("xpbd", {{"iterations", integer(1, 8)}, {"substeps", integer(1, 3)}}));
   for (int i = 0; i < net.numOfMasses(); ++i) {
     net.state.pos[i] += vec3(-0.05, 0.05);
     net.state.vel[i] = vec3(-1, 1);

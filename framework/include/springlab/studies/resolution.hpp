@@ -72,7 +72,7 @@ struct AdviseOptions {
 struct Candidate {
   std::string integrator;
   double dt = 0.0;             // s, the largest that met the tolerance; 0: none did
-  double error = 0.0;
+  double error = 0.0;          // at dt; when no dt met the tolerance, at the finest dt tried
   double evaluationsPerSecond = 0.0;  // force evaluations per simulated second
   std::string note;            // why it has no dt, or a missing exercise
 };
