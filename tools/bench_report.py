@@ -172,9 +172,10 @@ def report(context, runs):
                      "Both held at two corners with a 10 % stretch limit. Bullet 3.24 (float): btSoftBody patch, "
                      "bending constraints at distance 2, 10 position iterations.\n")
         table_rows = []
-        for material, r, method, b in sorted(rows, key=lambda x: (x[0], x[1], x[2] != "Bullet, position-based", x[2])):
+        order = ["Bullet, position-based"] + DRAPE_METHODS
+        for material, r, method, b in sorted(rows, key=lambda x: (x[0], x[1], order.index(x[2]))):
             table_rows.append([DRAPE_MATERIALS[material], r, method, fmt(b.get("ms_per_frame")),
-                               fmt(-b.get("drape_m", 0.0))])
+                               fmt(-b.get("drape_m", 0.0), 4)])
         lines.append(table(["material", "r", "method", "ms/frame", "drape (m)"], table_rows))
         if not any(m.startswith("Bullet") for _, _, m, _ in rows):
             lines.append("\nNo Bullet rows: springlab_bench was built without SPRINGLAB_BULLET_BENCH (needs libbullet-dev).")
