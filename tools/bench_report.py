@@ -175,7 +175,7 @@ def report(context, runs):
         order = ["Bullet, position-based"] + DRAPE_METHODS
         for material, r, method, b in sorted(rows, key=lambda x: (x[0], x[1], order.index(x[2]))):
             table_rows.append([DRAPE_MATERIALS[material], r, method, fmt(b.get("ms_per_frame")),
-                               fmt(-b.get("drape_m", 0.0), 4)])
+                               fmt(0.0 - b.get("drape_m", 0.0) + 0.0, 4)])
         lines.append(table(["material", "r", "method", "ms/frame", "drape (m)"], table_rows))
         if not any(m.startswith("Bullet") for _, _, m, _ in rows):
             lines.append("\nNo Bullet rows: springlab_bench was built without SPRINGLAB_BULLET_BENCH (needs libbullet-dev).")
