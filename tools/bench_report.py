@@ -7,7 +7,8 @@ Reads the medians of springlab_bench's run (or the single runs, without repetiti
 prints, as Markdown: the machine and its measured memory bandwidth (the triad), the spring
 force pass against the memory-traffic floor, one cloth step per integrator, the cloth
 thesis' frame broken down into phases next to the thesis' own figures, and the rope and
-the ball. Exits 1 naming the file when it holds no springlab benchmark.
+the ball, and the cloth's 5 s drape by method beside Bullet's position-based cloth (when the
+run has the Bullet rows). Exits 1 naming the file when it holds no springlab benchmark.
 """
 import argparse
 import json
@@ -23,6 +24,9 @@ THESIS = {
     48: (1.894, 0.829, 0.471, 0.058, 0.342, 0.193),
     64: (2.939, 1.169, 0.691, 0.109, 0.636, 0.333),
 }
+# ClothDrape's method argument (bench/net_drape.cpp) and the two materials of the drape table.
+DRAPE_METHODS = ["implicit Euler, blocks", "implicit Euler, sparse CG", "XPBD", "projective dynamics"]
+DRAPE_MATERIALS = ["thesis", "fabric"]
 PHASES = ["forces", "integration", "collisions", "stretch_limit", "normals", "other"]
 UNIT_MS = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
 
@@ -43,7 +47,8 @@ def load(path):
         if kind is None and name in runs:  # repetitions without aggregates: keep the first
             continue
         runs[name] = b
-    if not any(n.startswith(("NetStep", "SpringForcePass", "MemoryTriad", "NetFrame", "RopeStep", "BallStep"))
+    if not any(n.startswith(("NetStep", "SpringForcePass", "MemoryTriad", "NetFrame", "RopeStep", "BallStep",
+                             "ClothDrape", "BulletClothDrape"))
                for n in runs):
         sys.exit(f"bench_report: {path}: no springlab benchmark in it (field 'benchmarks')")
     return data.get("context", {}), runs
@@ -150,6 +155,30 @@ def report(context, runs):
                         [fmt(t[0]) if t else "–", fmt(t[0] / ms(b)) + "x" if t else "–"])
         lines.append(table(["r", "threads", "total", "forces", "integration", "collisions", "stretch limit", "normals",
                             "other", "thesis total", "speed-up"], rows))
+        lines.append("")
+
+    # ---- the 5 s drape, ours and Bullet's
+    rows = []
+    for name, b in runs.items():
+        if name.startswith(("ClothDrape", "BulletClothDrape")):
+            a = args(name)
+            method = "Bullet, position-based" if name.startswith("Bullet") else DRAPE_METHODS[a["method"]]
+            rows.append((a["material"], a["r"], method, b))
+    if rows:
+        lines.append("## The cloth's drape after 5 s, ours and Bullet's\n")
+        lines.append("ms per 1/60 s frame (CPU time, one thread) and the lowest point after 5 s (m, pins at 0). "
+                     "Thesis: 1 kg per mass, k = 75/22/8 N/m, one 1/60 s step per frame; fabric: "
+                     "scenes/net_hanging.json without its sphere (0.2 kg/m^2, k = 400/40/2 N/m, two 1/120 s steps). "
+                     "Both held at two corners with a 10 % stretch limit. Bullet 3.24 (float): btSoftBody patch, "
+                     "bending constraints at distance 2, 10 position iterations.\n")
+        table_rows = []
+        order = ["Bullet, position-based"] + DRAPE_METHODS
+        for material, r, method, b in sorted(rows, key=lambda x: (x[0], x[1], order.index(x[2]))):
+            table_rows.append([DRAPE_MATERIALS[material], r, method, fmt(b.get("ms_per_frame")),
+                               fmt(0.0 - b.get("drape_m", 0.0) + 0.0, 4)])
+        lines.append(table(["material", "r", "method", "ms/frame", "drape (m)"], table_rows))
+        if not any(m.startswith("Bullet") for _, _, m, _ in rows):
+            lines.append("\nNo Bullet rows: springlab_bench was built without SPRINGLAB_BULLET_BENCH (needs libbullet-dev).")
         lines.append("")
 
     # ---- rope and ball
