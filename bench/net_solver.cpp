@@ -7,7 +7,8 @@
 //     ms_per_step (CPU time / 600), cg_per_step, drape_m (the lowest point after 5 s).
 //   NetFabricMethodDrape/r/method: the same run with each method's scene defaults; method 0
 //     implicit_euler (smoothed aggregation, 1e-6), 1 implicit_euler_blocks (one sweep),
-//     2 implicit_euler_blocks (sweeps to 1e-4), 3 xpbd, 4 projective_dynamics.
+//     2 implicit_euler_blocks (sweeps to 1e-4, at most 400 per step; r = 32 only, as
+//     tests/studies/cloth_blocks_error_test.cpp), 3 xpbd, 4 projective_dynamics.
 #include <cmath>
 #include <ctime>
 #include <string>
@@ -71,7 +72,7 @@ void NetFabricMethodDrape(benchmark::State& bench) {
     case 0: fabricRun(bench, r, "implicit_euler", {{"preconditioner", "smoothed_aggregation"}}); break;
     case 1: fabricRun(bench, r, "implicit_euler_blocks", nlohmann::json::object()); break;
     case 2:
-      fabricRun(bench, r, "implicit_euler_blocks", {{"block_sweeps", 100000}, {"block_tolerance", 1e-4}});
+      fabricRun(bench, r, "implicit_euler_blocks", {{"block_sweeps", 400}, {"block_tolerance", 1e-4}});
       break;
     case 3: fabricRun(bench, r, "xpbd", nlohmann::json::object()); break;
     default: fabricRun(bench, r, "projective_dynamics", nlohmann::json::object()); break;
@@ -79,7 +80,8 @@ void NetFabricMethodDrape(benchmark::State& bench) {
 }
 BENCHMARK(NetFabricMethodDrape)
     ->ArgNames({"r", "method"})
-    ->ArgsProduct({{32, 64}, {0, 1, 2, 3, 4}})
+    ->ArgsProduct({{32}, {0, 1, 2, 3, 4}})
+    ->ArgsProduct({{64}, {0, 1, 3, 4}})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 
