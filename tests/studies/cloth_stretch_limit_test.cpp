@@ -1,12 +1,8 @@
-// Stretch limiting on large cloths: the tethers (given) plus two passes of exercise 2.6.
-// Gauss-Seidel passes alone left a strain of 31.7 (3170 %) against a limit of 0.1 on the
-// thesis cloth at r = 64 (handouts/02_net.md, section 2.4). Checked on the structural springs
-// (the threads) after 5 s.
-//
-// NOT YET the target (the limit + 1 %): tethers bound each mass's distance from the
-// pins, not the cloth's length between them, and the two spring passes leave about 25 % strain
-// next to the top edge between two pinned corners (measured: 0.248 on the thesis cloth, 0.258
-// on the fabric at r = 128). These tests hold that measured level, so a regression shows.
+// Stretch limiting on large cloths: the tethers (given, at an eighth of the allowance) plus two
+// passes of exercise 2.6 hold the largest structural strain after 5 s within the limit + 1 %
+// (0.11 at 10 %). Gauss-Seidel passes alone left 31.7 (3170 %) on the thesis cloth at r = 64;
+// tethers at the whole allowance left 0.248 next to the top edge between the two pinned
+// corners (handouts/02_net.md, section 2.4). Checked on the structural springs (the threads).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,7 +20,7 @@ namespace {
 using testing::allLabs;
 using testing::shippedScene;
 
-constexpr double kMeasuredStrain = 0.30;  // what tethers + 2 passes hold today (see above)
+constexpr double kLimitPlusOnePercent = 0.11;  // both scenes limit springs to 10 % stretch
 
 double largestStructuralStrain(const Simulation& sim) {
   double strain = 0.0;
@@ -65,17 +61,19 @@ TEST(StretchLimit, TethersHoldTheThesisClothFallingFlatAtResolution64) {
   d.set("net.v_axis=[0,0,1]");
   d.set("net.stretch_limit.enabled=true");
   const double strain = strainAfter(d, 5.0);
-  EXPECT_LE(strain, kMeasuredStrain) << "a structural spring is stretched by " << 100.0 * strain << " % after 5 s";
+  EXPECT_LE(strain, kLimitPlusOnePercent) << "a structural spring is stretched by " << 100.0 * strain << " % after 5 s";
 }
 
 TEST(StretchLimit, TethersHoldTheHangingFabricAtResolution128) {
-  // Light fabric on stiff springs, with its sphere and ground, at the per-particle blocks
-  // (the full solve at r = 128 is too slow for a test; the limiter does not depend on it).
+  // Light fabric on stiff springs, with its sphere and ground, stepped by XPBD (the scene's
+  // 10 iterations leave the threads stretchy at r = 128, so the limiter has work; the full
+  // implicit solve at r = 128 is too slow for a test; one per-particle block sweep is so stiff
+  // that the cloth flaps for seconds and has not hung by 5 s).
   SceneDocument d = shippedScene("net_hanging.json");
   d.set("net.resolution=128");
-  d.set("integrator=implicit_euler_blocks");
+  d.set("integrator=xpbd");
   const double strain = strainAfter(d, 5.0);
-  EXPECT_LE(strain, kMeasuredStrain) << "a structural spring is stretched by " << 100.0 * strain << " % after 5 s";
+  EXPECT_LE(strain, kLimitPlusOnePercent) << "a structural spring is stretched by " << 100.0 * strain << " % after 5 s";
 }
 
 }  // namespace

@@ -11,9 +11,10 @@ struct SolverSettings {
   // implicit_euler: conjugate gradients stop at this residual relative to |b|.
   double tolerance = 1e-6;
   // implicit_euler: CG's preconditioner: "block_jacobi" (each mass's 3x3 block),
-  // "smoothed_aggregation" (two-level AMG: 14 iterations at r = 32 and 64 on the fabric, but
-  // its set-up each step still costs more than block Jacobi's extra iterations), or "auto":
-  // block Jacobi until a step needs more than 40 iterations, then smoothed aggregation.
+  // "smoothed_aggregation" (two-level AMG, its hierarchy kept between steps: about 20-30
+  // iterations at r = 32 and 64 on the fabric against 66-250; cheaper than block Jacobi per
+  // step from r = 64 on, dearer at r = 32 and below), or "auto": block Jacobi until a step
+  // needs more than 40 iterations, then smoothed aggregation.
   std::string preconditioner = "block_jacobi";
   // implicit_euler_blocks: block-Jacobi sweeps of the implicit system per step, at most. One
   // sweep (the cloth thesis' method) solves each mass against its neighbours' old velocities.

@@ -18,6 +18,7 @@ void BlockSystem::prepare(const std::vector<char>& free, const ForceJacobian& J)
     return;
   }
   patternFree_ = free;
+  ++layoutVersion_;
   patternPairs_.resize(J.pairs.size());
   for (std::size_t k = 0; k < J.pairs.size(); ++k) patternPairs_[k] = {J.pairs[k].i, J.pairs[k].j};
 

@@ -6,15 +6,15 @@
 
 #include <springlab/math.hpp>
 #include <springlab/solvers/block_system.hpp>
+#include <springlab/solvers/conjugate_gradients.hpp>
 
 namespace springlab {
 
 // ---- Conjugate gradients for a BlockSystem ------------------------------------------
-// Preconditioned CG, stopping at |b - A x| <= tolerance |b| (as Eigen's ConjugateGradient).
+// Preconditioned CG (preconditionedCG), stopping at |b - A x| <= tolerance |b|.
 // The preconditioner inverts each free mass's own 3x3 block (block Jacobi): it sees a
 // spring's direction, where a diagonal one sees three scalars. Its vectors are kept between
-// solves, so a step allocates nothing; dot products run in a fixed order, so the result does
-// not depend on the number of threads.
+// solves, so a step allocates nothing.
 class BlockJacobiCG {
  public:
   double tolerance = 1e-6;
@@ -25,7 +25,7 @@ class BlockJacobiCG {
  private:
   void precondition(const Eigen::VectorXd& in, Eigen::VectorXd& out) const;
   std::vector<Mat3> inverseDiagonal_;  // [free masses] A_ii^-1
-  Eigen::VectorXd r_, z_, p_, q_;      // residual, preconditioned residual, direction, A p
+  ConjugateGradientVectors vectors_;
 };
 
 }  // namespace springlab

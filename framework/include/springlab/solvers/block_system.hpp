@@ -47,6 +47,9 @@ class BlockSystem {
   int row(int i) const { return row_[static_cast<std::size_t>(i)]; }  // first row of mass i, or -1
   int size() const { return static_cast<int>(b_.size()); }            // rows = 3 x free masses
   int masses() const { return static_cast<int>(row_.size()); }
+  // Counts the layouts prepare() built: unchanged while only values change, so a solver can
+  // keep what it derived from the layout (smoothed aggregation's aggregates).
+  int layoutVersion() const { return layoutVersion_; }
   const Eigen::VectorXd& rhs() const { return b_; }
   Mat3 block(int i, int j) const;  // A's block for masses i and j (zero when there is none)
   Mat3 diagonalBlock(int i) const; // A_ii (zero when mass i is eliminated)
@@ -73,6 +76,7 @@ class BlockSystem {
   SpringBatches batches_;                    // the pairs split for threads
   std::vector<char> patternFree_;            // what the layout was built for
   std::vector<std::array<int, 2>> patternPairs_;
+  int layoutVersion_ = 0;
 };
 
 }  // namespace springlab
