@@ -51,16 +51,16 @@ function(springlab_add_lab)
       add_library(${target}_objects OBJECT ${exercises})
       target_include_directories(${target}_objects PUBLIC ${given_dir}/include)
       # The student's warnings: never an error for the conversion class (SpringlabWarnings).
-      target_link_libraries(${target}_objects PUBLIC springlab_core PRIVATE springlab_student_warnings)
-      springlab_gnu_options(${target}_objects PRIVATE -Wno-unused-parameter)  # stubs ignore them
+      # (springlab_stub_warnings after the warnings: stubs ignore their parameters.)
+      target_link_libraries(${target}_objects PUBLIC springlab_core
+                            PRIVATE springlab_student_warnings springlab_stub_warnings)
       add_library(${target} STATIC $<TARGET_OBJECTS:${target}_objects> $<TARGET_OBJECTS:${given}>)
     else()
       add_library(${target} STATIC ${exercises} ${given_sources})
-      # A skeleton's stubs do not use their parameters yet.
-      springlab_gnu_options(${target} PRIVATE -Wno-unused-parameter)
     endif()
     target_include_directories(${target} PUBLIC ${given_dir}/include)
-    target_link_libraries(${target} PUBLIC springlab_core PRIVATE springlab_warnings)
+    # (springlab_stub_warnings after the warnings: a skeleton's stubs ignore their parameters.)
+    target_link_libraries(${target} PUBLIC springlab_core PRIVATE springlab_warnings springlab_stub_warnings)
     if(tree STREQUAL "oracle")
       target_compile_definitions(${target} PRIVATE ${LAB_NAME}=${LAB_NAME}_reference)
     endif()

@@ -20,6 +20,13 @@ if(MSVC)
   endif()
 else()
   set(springlab_warning_flags -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)
+  # Without OpenMP (Apple Clang) the loops stay serial: their pragmas are ignored, and the
+  # thread counts and helpers only those pragmas use are left unused. (After -Wall, which
+  # Clang would otherwise let turn them back on; the OpenMP builds keep these warnings.)
+  if(NOT SPRINGLAB_OPENMP)
+    list(APPEND springlab_warning_flags -Wno-unknown-pragmas -Wno-unused-variable
+         -Wno-unused-function -Wno-unused-but-set-variable)
+  endif()
   target_compile_options(springlab_warnings INTERFACE ${springlab_warning_flags})
   target_compile_options(springlab_student_warnings INTERFACE ${springlab_warning_flags})
   if(SPRINGLAB_WARNINGS_AS_ERRORS)
@@ -27,6 +34,17 @@ else()
     target_compile_options(springlab_student_warnings INTERFACE -Werror -Wno-error=conversion
                            -Wno-error=float-conversion -Wno-error=sign-compare)
   endif()
+endif()
+
+# Stubs do not use their parameters yet: springlab_stub_warnings silences that one warning.
+# It must come after the -Wextra it overrides (Clang takes the last of the two; GCC does not
+# care), so a lab target links it after its warnings library: CMake adds the interface
+# options in link order, and a target's own options before all of them.
+add_library(springlab_stub_warnings INTERFACE)
+if(MSVC)
+  target_compile_options(springlab_stub_warnings INTERFACE /wd4100)
+else()
+  target_compile_options(springlab_stub_warnings INTERFACE -Wno-unused-parameter)
 endif()
 
 # Flags that are GCC/Clang spellings only: a helper so MSVC builds skip them.
