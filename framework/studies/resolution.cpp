@@ -157,13 +157,20 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
   const std::vector<double> refSeries = observableSeries(reference, observable);
 
   // 3. Each integrator: the largest dt on the ladder that is stable and within half the
-  //    tolerance (integrators in parallel, each walking down its ladder).
+  //    tolerance (integrators in parallel, each walking down its ladder). A method stable at
+  //    any dt (c = inf: implicit Euler, XPBD, projective dynamics) starts higher, at the
+  //    scene's frame length (the largest step the viewer can take), since RK4's limit says
+  //    nothing about it: on a stiff scene its own step can be many times that limit.
+  const double frame = sceneDt(scene) * scene.json.at("substeps").get<double>();
+  int frameLevel = 0;
+  while (frameLevel < first && interval / std::ldexp(1.0, frameLevel) > frame * (1.0 + 1e-9)) ++frameLevel;
   const std::vector<std::string> names = studyIntegrators(registry, model, o.integrators);
   advice.candidates.resize(names.size());
   parallelFor(static_cast<int>(names.size()), o.threads, [&](int i) {
     Candidate& c = advice.candidates[i];
     c.integrator = names[i];
-    for (int l = first; l < first + o.levels; ++l) {
+    const int start = std::isinf(stabilityConstant(registry, names[i])) ? frameLevel : first;
+    for (int l = start; l < first + o.levels; ++l) {
       RunSpec spec{model, names[i], interval / static_cast<double>(per(l)), per(l), o.samples};
       spec.keepPositions = false;
       RunResult run;
@@ -203,7 +210,6 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
   // 5. The snippet: integrator, dt, substeps for the scene's frame length, the lab's section.
   if (advice.best >= 0) {
     const Candidate& b = advice.candidates[advice.best];
-    const double frame = sceneDt(scene) * scene.json.at("substeps").get<double>();
     advice.snippet["integrator"] = b.integrator;
     advice.snippet["dt"] = b.dt;
     advice.snippet["substeps"] = std::max(1L, std::lround(frame / b.dt));
