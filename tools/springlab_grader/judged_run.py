@@ -9,6 +9,7 @@ import functools
 import json
 import os
 import pathlib
+import re
 import resource
 import shutil
 import signal
@@ -305,6 +306,23 @@ def read_tail(log, size=8192):
     return tail(text, 30)
 
 
+# libstdc++'s assertion (the judges are built with -D_GLIBCXX_ASSERTIONS), as it prints it before
+# abort(): "...: std::vector<_Tp, _Alloc>::operator[](size_type) [with ...]: Assertion '__n <
+# this->size()' failed."
+_ASSERTION = re.compile(r"(std::\w+)<[^:]*?>::(operator\[\]|\w+)\(.*Assertion '([^']+)' failed")
+
+
+def failed_assertion(judge_output):
+    """The container function and condition of the libstdc++ assertion that stopped the judge
+    ("std::vector::operator[], __n < this->size()"), or None. Only the judge's own output is
+    read: the worker cannot write there."""
+    for line in reversed(judge_output.splitlines()):
+        match = _ASSERTION.search(line)
+        if match:
+            return f"{match[1]}::{match[2]}, {match[3]}"
+    return None
+
+
 def outcome_of(run: JudgedRun, name, timeout):
     """(passed, message) of one test from a judged run."""
     from .gtest_runner import clean, signal_name
@@ -313,6 +331,10 @@ def outcome_of(run: JudgedRun, name, timeout):
         why = run.worker.describe() if run.worker.returncode is None else "the judge ran out of time"
         return False, f"timed out after {timeout:g} s: {why}"
     if run.report is None:
+        stopped = failed_assertion(run.judge_output)
+        if stopped:
+            return False, (f"the test failed: the grader's judge stopped at an index past the end of what your code "
+                           f"returned ({stopped}): check the sizes of the containers your function returns")
         if run.judge_code < 0:
             return False, (f"the test failed: the grader's judge crashed ({signal_name(-run.judge_code)}) on what "
                            f"your code returned (sizes or indices out of range?)")
