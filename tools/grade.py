@@ -31,6 +31,7 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.gtest_runner import check_binary_against_manifest, draw_seed, grade_binary  # noqa: E402
+from springlab_grader.judged_run import bubblewrap, go_without_bubblewrap, starts_in_bubblewrap  # noqa: E402
 from springlab_grader.manifest import ManifestError, load_manifest  # noqa: E402
 from springlab_grader.reports import print_lab, write_outputs  # noqa: E402
 from springlab_grader.results import LabResult  # noqa: E402
@@ -92,6 +93,12 @@ def main():
         print(error, file=sys.stderr)
         return 2
 
+    # A student's build that needs files outside /usr (its compiler's libraries) cannot start in
+    # bubblewrap: its tests then run as plain processes, as on a machine without bubblewrap.
+    if bubblewrap() and not starts_in_bubblewrap(binary, sandbox, seccomp):
+        print(f"note: {shown} does not start inside bubblewrap (libraries outside /usr?): its tests run "
+              f"as plain processes", file=sys.stderr)
+        go_without_bubblewrap()
     seed = draw_seed(args.seed)
     print(f"{manifest['title']}: grading {shown} (SPRINGLAB_SEED={seed})")
     started = time.monotonic()

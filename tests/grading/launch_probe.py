@@ -4,7 +4,8 @@ launch_probe.cpp) records what its process sees (command line, environment, stan
 after the test's name, folder, user, PID namespace, open descriptors, limits), once as a
 `grade` worker (judged_run.run_judged, beside a stand-in judge) and once as a `check` test
 (gtest_runner.run_test, what tools/grade.py runs), and the two views must be identical, with
-bubblewrap (where it works here) and without it (as on a student's laptop).
+bubblewrap (where it works here) and without it (as on a student's laptop). Also: a program
+that cannot start in bubblewrap is told apart (tools/grade.py then checks without it).
 
     launch_probe.py --worker PROBE_WITH_WORKER_MAIN --check PROBE_WITH_GRADING_MAIN [--seccomp PROGRAM]
 """
@@ -104,6 +105,17 @@ def main():
         found, modes = [], []
         if judged_run.bubblewrap():
             modes.append("bubblewrap")
+            # A program that needs a file outside /usr (here its interpreter) does not start in
+            # bubblewrap, and tools/grade.py then checks without it; the probe does start.
+            outside = pathlib.Path(folder) / "interpreter"
+            outside.symlink_to(sys.executable)
+            needy = pathlib.Path(folder) / "needs_outside"
+            needy.write_text(f"#!{outside}\nimport sys\nsys.exit(2)\n")
+            os.chmod(needy, 0o755)
+            if judged_run.starts_in_bubblewrap(needy, sandbox):
+                found.append("bubblewrap: a program whose interpreter is outside /usr seems to start there")
+            if not judged_run.starts_in_bubblewrap(check, sandbox):
+                found.append("bubblewrap: the check's probe does not start there")
             seen = views(worker, check, judge, sandbox, args.seccomp or None)
             found += problems("bubblewrap", *seen)
         # Without bubblewrap (a student's laptop, a container without user namespaces).
