@@ -219,7 +219,11 @@ def launch_worker(program, test, sandbox: Sandbox, env, log, slot=0, seccomp=Non
         moved = [fcntl.fcntl(fd, fcntl.F_DUPFD, 64) for fd in given]
         for target, fd in enumerate(moved, start=CHANNEL_FD):
             os.dup2(fd, target)
-        os.closerange(CHANNEL_FD + len(moved), max(top, 1024))
+        try:  # up to the highest open one (Linux); else up to the limit, bounded
+            end = max(int(entry) for entry in os.listdir("/proc/self/fd")) + 1
+        except (OSError, ValueError):
+            end = min(max(top, 1024), 65536)
+        os.closerange(CHANNEL_FD + len(moved), end)
         for which, value in limits:
             resource.setrlimit(which, (value, value))
 
