@@ -1,12 +1,16 @@
 #!/usr/bin/env python3
-"""Run one lab's grading tests, each in its own sandboxed process, and score them.
+"""Run one lab's grading tests (`./springlab check`), each in its own sandboxed process, and score them.
 
 Points come from the lab's manifest (tests/<lab>/exercises.json), the one place they are
-declared. Each test runs alone in a fresh process and folder, with limits on time, CPU,
-memory, stack, file size and open files, and as the user `nobody` when the grader runs as
-root. A test scores only if the grading main (tests/support/grading_main.cpp) reports it
-passed on a private channel, with the secret nonce this run handed it, and the process exits
-0: a crash, a hang, exit(0) inside an exercise or printed fake GoogleTest output score 0.
+declared. Each test runs alone in a fresh process, launched exactly as `grade` launches a
+worker (tools/springlab_grader/judged_run.py launch_worker): the same command line, the same
+environment, the test's name on standard input, in bubblewrap where it works here (else as a
+plain process in a private folder), as the worker user when the grader is root, with limits
+on time, CPU, memory, stack, file size and open files. A test scores only if the grading
+main (tests/support/grading_main.cpp) reports it passed on the channel descriptor, after the
+test returned, and the process exits 0: a crash, a hang, exit(0) inside an exercise or printed
+fake GoogleTest output score 0. This is the student's check, not a verdict: the program holds
+their own code (`grade` decides with a judge that runs none of it).
 
     tools/grade.py --binary build/tests/rope_grading_student --manifest tests/01_rope/exercises.json
     tools/grade.py ... --expect-percent 100        exit 1 unless the score is exactly 100 %
@@ -27,6 +31,7 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.gtest_runner import check_binary_against_manifest, draw_seed, grade_binary  # noqa: E402
+from springlab_grader.judged_run import bubblewrap, go_without_bubblewrap, starts_in_bubblewrap  # noqa: E402
 from springlab_grader.manifest import ManifestError, load_manifest  # noqa: E402
 from springlab_grader.reports import print_lab, write_outputs  # noqa: E402
 from springlab_grader.results import LabResult  # noqa: E402
@@ -45,6 +50,8 @@ def main():
     ap.add_argument("--out", help="folder for report.md, results.json and junit.xml")
     ap.add_argument("--check-handout", help="check the handout's headings against the manifest and exit")
     ap.add_argument("--quiet", action="store_true", help="print only the summary")
+    ap.add_argument("--seccomp", help="the program that writes the workers' seccomp filter (default: "
+                                      "springlab_worker_seccomp beside the binary, if built)")
     args = ap.parse_args()
 
     try:
@@ -64,6 +71,8 @@ def main():
     if not args.binary:
         ap.error("--binary is required")
     binary = str(pathlib.Path(args.binary).resolve())  # tests run in their own folders
+    # The workers' seccomp filter, as `grade` gives it (built beside the grading programs).
+    seccomp = args.seccomp or str(pathlib.Path(binary).with_name("springlab_worker_seccomp"))
     if not os.access(binary, os.X_OK):
         print(f"{binary}: no such test program (was the lab built?)", file=sys.stderr)
         return 2
@@ -84,10 +93,16 @@ def main():
         print(error, file=sys.stderr)
         return 2
 
+    # A student's build that needs files outside /usr (its compiler's libraries) cannot start in
+    # bubblewrap: its tests then run as plain processes, as on a machine without bubblewrap.
+    if bubblewrap() and not starts_in_bubblewrap(binary, sandbox, seccomp):
+        print(f"note: {shown} does not start inside bubblewrap (libraries outside /usr?): its tests run "
+              f"as plain processes", file=sys.stderr)
+        go_without_bubblewrap()
     seed = draw_seed(args.seed)
     print(f"{manifest['title']}: grading {shown} (SPRINGLAB_SEED={seed})")
     started = time.monotonic()
-    results = grade_binary(binary, manifest, seed, sandbox, args.jobs, present)
+    results = grade_binary(binary, manifest, seed, sandbox, args.jobs, present, seccomp=seccomp)
     lab = LabResult(manifest, results, seed=seed, seconds=time.monotonic() - started)
     print_lab(lab, quiet=args.quiet)
     if args.out:

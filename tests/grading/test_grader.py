@@ -398,9 +398,9 @@ int helperTheGivenCodeDefines(int n);
 class JudgedOutcomes(unittest.TestCase):
     """What a student reads when the judge's report or the worker's fate decides."""
 
-    def run_of(self, report, judge_code=0, worker_code=0, output=""):
+    def run_of(self, report, judge_code=0, worker_code=0, output="", judge_output=""):
         from springlab_grader import judged_run  # noqa: PLC0415
-        return judged_run.JudgedRun(report, judge_code, "", judged_run.Fate(worker_code, output), 0.1)
+        return judged_run.JudgedRun(report, judge_code, judge_output, judged_run.Fate(worker_code, output), 0.1)
 
     def test_pass(self):
         from springlab_grader.judged_run import outcome_of  # noqa: PLC0415
@@ -427,6 +427,45 @@ class JudgedOutcomes(unittest.TestCase):
         from springlab_grader.judged_run import outcome_of  # noqa: PLC0415
         self.assertFalse(outcome_of(self.run_of(None, judge_code=-6), "A.B", 20)[0])
         self.assertFalse(outcome_of(self.run_of({"tests": []}), "A.B", 20)[0])
+
+
+    def test_judge_assertion_names_the_index_past_the_end(self):
+        # What libstdc++ prints before abort() in a judge built with -D_GLIBCXX_ASSERTIONS.
+        from springlab_grader.judged_run import outcome_of  # noqa: PLC0415
+        printed = ("[ RUN      ] BuildRope.FirstMassIsFixedAtTheConnectionPoint\n/usr/include/c++/12/bits/stl_vector.h:"
+                   "1123: std::vector<_Tp, _Alloc>::reference std::vector<_Tp, _Alloc>::operator[](size_type) [with "
+                   "_Tp = Eigen::Matrix<double, 3, 1>; size_type = long unsigned int]: Assertion '__n < this->size()' "
+                   "failed.")
+        passed, message = outcome_of(self.run_of(None, judge_code=-6, judge_output=printed), "A.B", 20)
+        self.assertFalse(passed)
+        self.assertIn("index past the end of what your code returned (std::vector::operator[], "
+                      "__n < this->size())", message)
+        # A crash without an assertion keeps the general message.
+        passed, message = outcome_of(self.run_of(None, judge_code=-11, judge_output="[ RUN ] A.B"), "A.B", 20)
+        self.assertIn("judge crashed (segmentation fault", message)
+
+
+class LaunchedLikeAWorker(unittest.TestCase):
+    """The one launch of student code (judged_run.launch_worker) that `grade` and `check` share."""
+
+    def test_the_command_line_names_no_test(self):
+        from springlab_grader import judged_run  # noqa: PLC0415
+        argv = judged_run.worker_argv("/somewhere/worker", {"SPRINGLAB_SEED": "7"})
+        self.assertEqual(argv[-2:], [judged_run.PROGRAM_NAME, *judged_run.WORKER_ARGS])
+        self.assertFalse(any("gtest_filter" in a for a in argv))
+
+    def test_the_environment_is_the_workers(self):
+        from springlab_grader import judged_run  # noqa: PLC0415
+        env = judged_run.worker_env({"SPRINGLAB_SEED": "7"})
+        self.assertEqual(set(env), {*judged_run.WORKER_ENV, "SPRINGLAB_SEED", "SPRINGLAB_CALL_TRACE_FD"})
+        self.assertEqual(env["SPRINGLAB_CALL_TRACE_FD"], str(judged_run.CHANNEL_FD))
+
+    def test_a_bubblewrap_exit_above_128_is_a_signal(self):
+        from springlab_grader.judged_run import crash_signal  # noqa: PLC0415
+        self.assertEqual(crash_signal(-11), 11)
+        self.assertEqual(crash_signal(128 + 6), 6)
+        self.assertIsNone(crash_signal(1))
+        self.assertIsNone(crash_signal(None))
 
 
 class StudentReadmePointsTable(unittest.TestCase):

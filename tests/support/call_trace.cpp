@@ -10,16 +10,10 @@
 
 #include <springlab/not_implemented.hpp>
 
+#include "launch.hpp"
+
 namespace springlab::trace {
 namespace {
-
-int descriptorFromEnvironment() {
-  const char* text = std::getenv("SPRINGLAB_CALL_TRACE_FD");
-  if (text == nullptr || *text == '\0') return -1;
-  char* end = nullptr;
-  const long fd = std::strtol(text, &end, 10);
-  return (*end == '\0' && fd >= 0 && fd < 1024) ? static_cast<int>(fd) : -1;
-}
 
 constexpr std::size_t kBuffer = std::size_t{1} << 16;
 constexpr std::size_t kMaxMessage = 4000;
@@ -27,7 +21,7 @@ constexpr std::size_t kMaxMessage = 4000;
 }  // namespace
 
 // ---- worker ----------------------------------------------------------------------------
-Writer::Writer() : fd_(descriptorFromEnvironment()) {
+Writer::Writer() : fd_(launch::channelFromEnvironment()) {
   if (fd_ >= 0) {
     buffer_.reserve(kBuffer);
     ::unsetenv("SPRINGLAB_CALL_TRACE_FD");
@@ -98,7 +92,7 @@ void recordException(Writer& w, std::uint32_t function) {
 }
 
 // ---- judge -----------------------------------------------------------------------------
-Reader::Reader() : fd_(descriptorFromEnvironment()), buffer_(kBuffer) {}
+Reader::Reader() : fd_(launch::channelFromEnvironment()), buffer_(kBuffer) {}
 
 Reader& Reader::instance() {
   static Reader reader;

@@ -3,25 +3,18 @@
 // (call_trace.hpp) of the student's functions, from which the judge (judge_main.cpp), a
 // process without student code, decides.
 //
-// Every worker starts the same way, whatever it runs: no arguments but GoogleTest's colour,
-// the same environment. The test to run comes on standard input (one line, the test's full
-// name), read before any test starts; so the command line, /proc/self/cmdline and the
-// environment say nothing about which test runs.
+// Every worker starts the same way, whatever it runs, and the same way as a `check`'s test
+// process (launch.hpp): no arguments but GoogleTest's colour, the same environment, the test
+// to run on standard input; so the command line, /proc/self/cmdline and the environment say
+// nothing about which test runs, or whether it is graded.
 #include <gtest/gtest.h>
 
-#include <iostream>
-#include <string>
-
 #include "call_trace.hpp"
+#include "launch.hpp"
 
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
-  std::string test;
-  if (!std::getline(std::cin, test) || test.empty()) {
-    std::cerr << "worker: expected the name of one test on standard input\n";
-    return 2;
-  }
-  GTEST_FLAG_SET(filter, test);
+  if (!springlab::launch::runOnlyTheTestOnStandardInput("worker")) return 2;
   springlab::trace::Writer::instance();  // takes the trace's descriptor before any test runs
   const int code = RUN_ALL_TESTS();
   springlab::trace::Writer::instance().flush();

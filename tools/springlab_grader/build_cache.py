@@ -274,7 +274,8 @@ class Cache:
         """The reference's own grading time for a lab ({test: seconds}), measured once on the
         trusted side and kept in grading/<name>_reference_time.json beside the link, keyed by
         the reference program's bytes; None when the build has no reference."""
-        program = self.lab(lab, sandbox).link.reference_program
+        link = self.lab(lab, sandbox).link
+        program = link.reference_program
         if not program or not os.access(program, os.X_OK):
             return None
         digest = hashlib.sha256(pathlib.Path(program).read_bytes()).hexdigest()
@@ -288,7 +289,8 @@ class Cache:
                     return {str(k): float(v) for k, v in per_test.items()}
             except (OSError, ValueError):
                 pass
-            results = grade_binary(program, lab.manifest, 1, sandbox, 1)
+            # Launched as the workers are (gtest_runner.run_test), so the times compare.
+            results = grade_binary(program, lab.manifest, 1, sandbox, 1, seccomp=link.worker_seccomp)
             per_test = {r.test["name"]: r.seconds for r in results}
             temporary = record.with_name(f"{record.name}.{os.getpid()}")
             temporary.write_text(json.dumps({"program_sha256": digest, "seconds": sum(per_test.values()),

@@ -1,20 +1,25 @@
-"""Running a GoogleTest grading program: listing its tests, running each alone in the sandbox,
-and trusting only the report the grading main (tests/support/grading_main.cpp) sends on the
-private results channel, signed with a nonce handed to it for that run. Hidden tests' messages
-lose the values GoogleTest printed. Also the seed of the random test inputs."""
+"""Running a GoogleTest grading program: listing its tests, and running each alone, started
+exactly as `grade` starts a worker (judged_run.launch_worker: the same command line,
+environment, descriptors, folder, user and sandbox; the test's name on standard input), so
+nothing the program can see tells a check from a graded run, or which test runs. The outcome
+counts only from the report the grading main (tests/support/grading_main.cpp) writes on the
+channel descriptor once every test has returned: printed output and exit codes do not count.
+Hidden tests' messages lose the values GoogleTest printed. Also the seed of the random test
+inputs and the time budgets."""
 import concurrent.futures
 import dataclasses
 import json
 import os
 import random
 import re
-import secrets
 import signal
+import tempfile
 import threading
+import time
 
 from .manifest import ManifestError
 from .results import TestResult
-from .sandbox import run_sandboxed, tail
+from .sandbox import read_until_closed, run_sandboxed, tail
 
 
 @dataclasses.dataclass
@@ -24,38 +29,42 @@ class Outcome:
     seconds: float
 
 
-def run_test(binary, name, seed, sandbox):
-    """Run one GoogleTest test alone; trust only the nonce-signed report on the channel."""
-    nonce = secrets.token_hex(32)
-    run = run_sandboxed([binary, f"--gtest_filter={name}", "--gtest_color=no"], sandbox,
-                        {"SPRINGLAB_SEED": str(seed)}, nonce=nonce)
-    report = None
-    lines = run.channel.decode("utf-8", "replace").splitlines()
-    for line in lines:
-        try:
-            message = json.loads(line)
-        except ValueError:
-            continue
-        if isinstance(message, dict) and message.get("nonce") == nonce:
-            report = message
-    if run.returncode is None:
-        return Outcome(False, f"timed out after {sandbox.timeout:g} s: an infinite loop, or far too much work", run.seconds)
-    if run.returncode < 0:
-        return Outcome(False, f"crashed: {signal_name(-run.returncode)}\n{tail(run.output)}", run.seconds)
-    if report is None or len(lines) != 1:
-        return Outcome(False, f"the test process ended (exit code {run.returncode}) without the grader's report: "
-                              f"exit() or a crash inside the code under test\n{tail(run.output)}", run.seconds)
+def run_test(binary, name, seed, sandbox, slot=0, seccomp=None):
+    """Run one GoogleTest test alone, launched as a worker is; trust only the report on the
+    channel (one JSON object, written after the test returned)."""
+    from .judged_run import crash_signal, launch_worker, read_tail, wait_until
+    start = time.monotonic()
+    with tempfile.TemporaryFile() as log:
+        launch = launch_worker(binary, name, sandbox, {"SPRINGLAB_SEED": str(seed)}, log, slot=slot, seccomp=seccomp)
+        deadline = start + sandbox.timeout
+        channel = read_until_closed(launch.channel, deadline)
+        os.close(launch.channel)
+        code = wait_until(launch.proc, deadline)
+        launch.finish()
+        seconds = time.monotonic() - start
+        output = read_tail(log)
+    try:
+        report = json.loads(channel.decode("utf-8", "replace")) if channel.strip() else None
+    except ValueError:
+        report = None
+    if code is None:
+        return Outcome(False, f"timed out after {sandbox.timeout:g} s: an infinite loop, or far too much work", seconds)
+    if crash_signal(code) is not None:
+        return Outcome(False, f"crashed: {signal_name(crash_signal(code))}\n{tail(output)}", seconds)
+    if not isinstance(report, dict):
+        return Outcome(False, f"the test process ended (exit code {code}) without the grader's report: "
+                              f"exit() or a crash inside the code under test\n{tail(output)}", seconds)
     tests = [t for t in report.get("tests", []) if isinstance(t, dict)]
     if len(tests) != 1 or tests[0].get("name") != name:
-        return Outcome(False, "the test did not run (not found in the test program)", run.seconds)
+        return Outcome(False, "the test did not run (not found in the test program)", seconds)
     status, failures = tests[0].get("status"), [str(f) for f in tests[0].get("failures", [])]
-    if status == "passed" and run.returncode == 0:
-        return Outcome(True, "", run.seconds)
+    if status == "passed" and code == 0:
+        return Outcome(True, "", seconds)
     if failures:
-        return Outcome(False, "\n".join(clean(f) for f in failures), run.seconds)
+        return Outcome(False, "\n".join(clean(f) for f in failures), seconds)
     if status == "skipped":
-        return Outcome(False, "skipped: a skipped test earns no points", run.seconds)
-    return Outcome(False, f"the test passed but its process then exited with code {run.returncode}", run.seconds)
+        return Outcome(False, "skipped: a skipped test earns no points", seconds)
+    return Outcome(False, f"the test passed but its process then exited with code {code}", seconds)
 
 
 def signal_name(number):
@@ -162,10 +171,12 @@ class BudgetRule:
         return self.floor / max(1, files) + self.factor * sum(self.reference.get(t, 0.0) for t in tests)
 
 
-def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=None, only=None, budget=None):
+def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=None, only=None, budget=None,
+                 slot=0, seccomp=None):
     """Run every manifest test the binary holds, side by side; results in manifest order.
     `only`: names of the tests to run (the others are left out); `budget`: a Budget, after
-    which the remaining tests fail with "time budget spent"."""
+    which the remaining tests fail with "time budget spent". Each test is launched as a worker
+    (run_test); `slot` and `seccomp` as in grade_judged."""
     present = set(present if present is not None else listed_tests(binary, sandbox))
     # A student's own build has no hidden tests; those are left out there, not failed.
     todo = [(ex, t) for ex in manifest["exercises"] for t in ex["tests"]
@@ -179,7 +190,7 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
         elif spent is not None:
             outcome = Outcome(False, spent.message(), 0.0)
         else:
-            outcome = run_test(binary, t["name"], seed, sandbox)
+            outcome = run_test(binary, t["name"], seed, sandbox, slot=slot, seccomp=seccomp)
             if budget:
                 budget.spend(outcome.seconds)
         message = redact(outcome.message) if t["visibility"] != "visible" and outcome.message else outcome.message
@@ -189,7 +200,11 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
         return result
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        return list(pool.map(one, todo))
+        results = list(pool.map(one, todo))
+    if todo and os.geteuid() == 0:
+        from .judged_run import kill_user, worker_uid
+        kill_user(worker_uid(slot))
+    return results
 
 
 def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget=None, slot=0, seccomp=None):

@@ -9,6 +9,7 @@ import functools
 import json
 import os
 import pathlib
+import re
 import resource
 import shutil
 import signal
@@ -24,11 +25,24 @@ WORKER_ENV = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "TMPDIR": "/tmp", "LANG":
 TRACE_ENDED = "SPRINGLAB_TRACE_ENDED: "
 
 
-@functools.lru_cache(maxsize=1)
+_plain = []  # set by go_without_bubblewrap()
+
+
 def bubblewrap():
     """The bwrap program if it can make its namespaces here, else None: then workers run with
     the process sandbox alone (their own user, limits, process group, a clean environment),
-    as in a container that forbids user namespaces. Sandbox.describe() says which."""
+    as in a container that forbids user namespaces. isolation() says which."""
+    return None if _plain else _bubblewrap_here()
+
+
+def go_without_bubblewrap():
+    """From now on this grader launches plain processes (`check` of a program that cannot
+    start in bubblewrap: see starts_in_bubblewrap)."""
+    _plain.append(True)
+
+
+@functools.lru_cache(maxsize=1)
+def _bubblewrap_here():
     program = shutil.which("bwrap")
     if program is None:
         return None
@@ -92,6 +106,18 @@ def worker_uid(slot):
         return _claimed[slot][0]
 
 
+def crash_signal(returncode):
+    """The signal that ended a launched program, or None: killed outright (a negative code), or,
+    under bubblewrap, which exits with 128 + the signal of the program it ran."""
+    if returncode is None:
+        return None
+    if returncode < 0:
+        return -returncode
+    if returncode > 128 and returncode - 128 in signal.Signals._value2member_map_:
+        return returncode - 128
+    return None
+
+
 @dataclasses.dataclass
 class Fate:
     """How a worker ended: its exit code, the signal that killed it, or the time limit."""
@@ -102,10 +128,8 @@ class Fate:
         from .gtest_runner import signal_name
         if self.returncode is None:
             return "it was still running at the time limit (an infinite loop, or far too much work)"
-        if self.returncode < 0:
-            return f"it crashed: {signal_name(-self.returncode)}"
-        if self.returncode >= 128 and self.returncode - 128 in signal.Signals._value2member_map_:
-            return f"it crashed: {signal_name(self.returncode - 128)}"
+        if crash_signal(self.returncode) is not None:
+            return f"it crashed: {signal_name(crash_signal(self.returncode))}"
         return f"its process exited with code {self.returncode} before the call returned (exit() or abort)"
 
 
@@ -118,78 +142,154 @@ class JudgedRun:
     seconds: float
 
 
-def worker_argv(binary, args, trace_fd, env, seccomp_fd=None):
-    """bwrap around the worker program: the program is bound read-only at /sandbox/test, and
-    the seccomp filter read from seccomp_fd (if any) is loaded just before it starts. Without
-    bubblewrap, the program itself (run_judged gives it a clean environment)."""
+# Every worker's command line, whatever test it runs (the test comes on its standard input).
+WORKER_ARGS = ["--gtest_color=no"]
+# Where every launched program finds its channel back to the grader (a worker's call trace, a
+# check's report: SPRINGLAB_CALL_TRACE_FD) and, under bubblewrap, the seccomp filter: the same
+# numbers in every launch, whatever the grader has open.
+CHANNEL_FD = 3
+SECCOMP_FD = 4
+# argv[0] of every launched program: where bubblewrap binds it, and its name without bubblewrap.
+PROGRAM_NAME = "/sandbox/test"
+
+
+def worker_argv(program, env, seccomp_fd=None):
+    """The command line of every launch: bwrap around the program, which is bound read-only
+    at /sandbox/test and runs in a private /tmp with the environment worker_env(env), the
+    seccomp filter read from seccomp_fd (if any) loaded just before it starts. Without
+    bubblewrap, the program itself, named /sandbox/test all the same (launch_worker runs it
+    with worker_env and its own folder)."""
     if bubblewrap() is None:
-        return [str(binary), *args]
+        return [PROGRAM_NAME, *WORKER_ARGS]
     argv = [bubblewrap(), "--unshare-all", "--die-with-parent", "--new-session", "--clearenv"]
     if seccomp_fd is not None:
         argv += ["--seccomp", str(seccomp_fd)]
-    for key, value in {**WORKER_ENV, **env, "SPRINGLAB_CALL_TRACE_FD": str(trace_fd)}.items():
+    for key, value in worker_env(env).items():
         argv += ["--setenv", key, value]
     argv += ["--ro-bind", "/usr", "/usr", "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64",
              "--symlink", "usr/bin", "/bin", "--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp",
-             "--ro-bind", str(binary), "/sandbox/test", "--chdir", "/tmp", "/sandbox/test", *args]
+             "--ro-bind", str(program), PROGRAM_NAME, "--chdir", "/tmp", PROGRAM_NAME, *WORKER_ARGS]
     return argv
 
 
-# Every worker's command line, whatever test it runs (the test comes on its standard input).
-WORKER_ARGS = ["--gtest_color=no"]
+def worker_env(env, private=None):
+    """The whole environment of a launched program: WORKER_ENV, the run's own variables (the
+    seed) and the channel; without bubblewrap its HOME and TMPDIR are its private folder."""
+    home = {"HOME": private, "TMPDIR": private} if private else {}
+    return {**WORKER_ENV, **env, **home, "SPRINGLAB_CALL_TRACE_FD": str(CHANNEL_FD)}
+
+
+@dataclasses.dataclass
+class Launch:
+    """A program started by launch_worker: its process, the grader's read end of its channel
+    (SPRINGLAB_CALL_TRACE_FD), and what finish() takes away afterwards."""
+    proc: subprocess.Popen
+    channel: int
+    private: str
+
+    def finish(self):
+        """Kill whatever is left of it (its process group) and remove its private folder."""
+        kill_group(self.proc)
+        shutil.rmtree(self.private, ignore_errors=True)
+
+
+def launch_worker(program, test, sandbox: Sandbox, env, log, slot=0, seccomp=None):
+    """Start `program` to run the test named `test`, the one way the grader starts student
+    code: a `grade` worker (run_judged) and a `check` test process (gtest_runner.run_test)
+    alike. The command line (worker_argv), the environment (worker_env: the same names and
+    values), the descriptors (the channel at CHANNEL_FD, nothing else above stderr), the
+    folder and the user are the same whatever runs; the test's name comes as one line on
+    standard input. Under bubblewrap the program is /sandbox/test, run in /tmp; without it,
+    it runs as its own user (root graders) in a private folder, argv[0] still /sandbox/test.
+    Output goes to `log`. The caller reads launch.channel and calls launch.finish()."""
+    channel_r, channel_w = os.pipe()
+    name_r, name_w = os.pipe()
+    limits = sandbox.limits()
+    uid = worker_uid(slot) if os.geteuid() == 0 else None
+    private = tempfile.mkdtemp(prefix="springlab-worker-")  # the fallback's cwd and HOME
+    if uid is not None:
+        os.chown(private, uid, uid)
+    bpf = seccomp_filter(seccomp) if bubblewrap() else None
+    seccomp_fd = os.open(bpf, os.O_RDONLY) if bpf else None
+    given = [channel_w] + ([seccomp_fd] if seccomp_fd is not None else [])
+    top = os.sysconf("SC_OPEN_MAX")
+
+    def in_child():
+        # The channel (and the filter) at fixed numbers, every other inherited descriptor shut.
+        moved = [fcntl.fcntl(fd, fcntl.F_DUPFD, 64) for fd in given]
+        for target, fd in enumerate(moved, start=CHANNEL_FD):
+            os.dup2(fd, target)
+        try:  # up to the highest open one (Linux); else up to the limit, bounded
+            end = max(int(entry) for entry in os.listdir("/proc/self/fd")) + 1
+        except (OSError, ValueError):
+            end = min(max(top, 1024), 65536)
+        os.closerange(CHANNEL_FD + len(moved), end)
+        for which, value in limits:
+            resource.setrlimit(which, (value, value))
+
+    argv = worker_argv(program, env, SECCOMP_FD if seccomp_fd is not None else None)
+    try:
+        proc = subprocess.Popen(
+            argv, executable=None if bubblewrap() else str(program),
+            env={"PATH": "/usr/bin:/bin"} if bubblewrap() else worker_env(env, private), cwd=private,
+            stdin=name_r, stdout=log, stderr=subprocess.STDOUT, close_fds=False, process_group=0,
+            preexec_fn=in_child, user=uid, group=uid, extra_groups=[] if uid else None)
+    finally:
+        for fd in (channel_w, name_r, seccomp_fd):
+            if fd is not None:
+                os.close(fd)
+    # A test name is far below a pipe's buffer: this write never waits for the program.
+    os.write(name_w, test.encode() + b"\n")
+    os.close(name_w)
+    return Launch(proc, channel_r, private)
+
+
+def starts_in_bubblewrap(program, sandbox: Sandbox, seccomp=None):
+    """Whether `program` starts when launched in bubblewrap: a student's own build may need
+    libraries outside /usr (a compiler in /opt or a conda environment), which bubblewrap does
+    not show. Launched as any test is, with no test named, its main answers with exit code 2."""
+    with tempfile.TemporaryFile() as log:
+        launch = launch_worker(program, "", sandbox, {}, log, seccomp=seccomp)
+        os.close(launch.channel)
+        code = wait_until(launch.proc, time.monotonic() + 60)
+        launch.finish()
+    return code == 2
 
 
 def run_judged(judge, worker, test, sandbox: Sandbox, env, slot=0, seccomp=None):
     """Run the test named `test` in the judge and the worker side by side, joined by the trace
     pipe; the judge's report, the worker's fate. The judge has the name on its command line;
-    the worker reads it from standard input (worker_main.cpp), so its command line and
-    environment are the same for every test. The time limit covers both; both end before
-    this returns. `seccomp`: the program that writes the workers' seccomp filter."""
-    trace_r, trace_w = os.pipe()
+    the worker is started by launch_worker (the name on its standard input), so its command
+    line and environment are the same for every test, and the same as a check's. The time
+    limit covers both; both end before this returns. `seccomp`: the program that writes the
+    workers' seccomp filter."""
     report_r, report_w = os.pipe()
-    name_r, name_w = os.pipe()
     limits = sandbox.limits()
 
     def limited():
         for which, value in limits:
             resource.setrlimit(which, (value, value))
 
-    root = os.geteuid() == 0
-    base_env = {**WORKER_ENV, **env}
     start = time.monotonic()
     with tempfile.TemporaryFile() as judge_log, tempfile.TemporaryFile() as worker_log:
+        launch = launch_worker(worker, test, sandbox, env, worker_log, slot=slot, seccomp=seccomp)
+        trace_r = launch.channel
         judge_proc = subprocess.Popen(
-            [judge, f"--gtest_filter={test}", *WORKER_ARGS, f"--springlab-report=/dev/fd/{report_w}"], env={**base_env, "SPRINGLAB_CALL_TRACE_FD": str(trace_r)},
+            [judge, f"--gtest_filter={test}", *WORKER_ARGS, f"--springlab-report=/dev/fd/{report_w}"],
+            env={**WORKER_ENV, **env, "SPRINGLAB_CALL_TRACE_FD": str(trace_r)},
             stdin=subprocess.DEVNULL, stdout=judge_log, stderr=subprocess.STDOUT, pass_fds=(trace_r, report_w),
             process_group=0, preexec_fn=limited)
-        uid = worker_uid(slot) if root else None
-        private = tempfile.mkdtemp(prefix="springlab-worker-")  # the fallback's cwd and HOME
-        if uid is not None:
-            os.chown(private, uid, uid)
-        plain = {**WORKER_ENV, **env, "HOME": private, "TMPDIR": private, "SPRINGLAB_CALL_TRACE_FD": str(trace_w)}
-        bpf = seccomp_filter(seccomp) if bubblewrap() else None
-        seccomp_fd = os.open(bpf, os.O_RDONLY) if bpf else None
-        worker_proc = subprocess.Popen(
-            worker_argv(worker, WORKER_ARGS, trace_w, env, seccomp_fd),
-            env={"PATH": "/usr/bin:/bin"} if bubblewrap() else plain, cwd=private, stdin=name_r, stdout=worker_log,
-            stderr=subprocess.STDOUT, pass_fds=(trace_w,) if seccomp_fd is None else (trace_w, seccomp_fd),
-            process_group=0, preexec_fn=limited, user=uid, group=uid, extra_groups=[] if uid else None)
-        for fd in (trace_r, trace_w, report_w, name_r, seccomp_fd):
-            if fd is not None:
-                os.close(fd)
-        # A test name is far below a pipe's buffer: this write never waits for the worker.
-        os.write(name_w, test.encode() + b"\n")
-        os.close(name_w)
+        for fd in (trace_r, report_w):
+            os.close(fd)
         deadline = start + sandbox.timeout
         report = read_until_closed(report_r, deadline, cap=1 << 22)
         os.close(report_r)
         judge_code = wait_until(judge_proc, deadline)
         # The judge is done: the worker has nothing left to say.
-        worker_code = wait_until(worker_proc, deadline if judge_code is None else time.monotonic() + 0.5)
+        worker_code = wait_until(launch.proc, deadline if judge_code is None else time.monotonic() + 0.5)
         # bubblewrap's PID namespace ends with its first process: nothing of the worker is left.
-        for proc in (judge_proc, worker_proc):
-            kill_group(proc)
-        shutil.rmtree(private, ignore_errors=True)
+        kill_group(judge_proc)
+        launch.finish()
         seconds = time.monotonic() - start
         try:
             parsed = json.loads(report.decode("utf-8", "replace")) if report.strip() else None
@@ -235,6 +335,23 @@ def read_tail(log, size=8192):
     return tail(text, 30)
 
 
+# libstdc++'s assertion (the judges are built with -D_GLIBCXX_ASSERTIONS), as it prints it before
+# abort(): "...: std::vector<_Tp, _Alloc>::operator[](size_type) [with ...]: Assertion '__n <
+# this->size()' failed."
+_ASSERTION = re.compile(r"(std::\w+)<[^:]*?>::(operator\[\]|\w+)\(.*Assertion '([^']+)' failed")
+
+
+def failed_assertion(judge_output):
+    """The container function and condition of the libstdc++ assertion that stopped the judge
+    ("std::vector::operator[], __n < this->size()"), or None. Only the judge's own output is
+    read: the worker cannot write there."""
+    for line in reversed(judge_output.splitlines()):
+        match = _ASSERTION.search(line)
+        if match:
+            return f"{match[1]}::{match[2]}, {match[3]}"
+    return None
+
+
 def outcome_of(run: JudgedRun, name, timeout):
     """(passed, message) of one test from a judged run."""
     from .gtest_runner import clean, signal_name
@@ -243,6 +360,10 @@ def outcome_of(run: JudgedRun, name, timeout):
         why = run.worker.describe() if run.worker.returncode is None else "the judge ran out of time"
         return False, f"timed out after {timeout:g} s: {why}"
     if run.report is None:
+        stopped = failed_assertion(run.judge_output)
+        if stopped:
+            return False, (f"the test failed: the grader's judge stopped at an index past the end of what your code "
+                           f"returned ({stopped}): check the sizes of the containers your function returns")
         if run.judge_code < 0:
             return False, (f"the test failed: the grader's judge crashed ({signal_name(-run.judge_code)}) on what "
                            f"your code returned (sizes or indices out of range?)")

@@ -146,7 +146,8 @@ class LabGrader:
                 continue
             mark = time.monotonic()
             for r in grade_binary(str(binary), self.lab.manifest, self.seed, self.sandbox, self.jobs,
-                                  present=self.build.tests_present, only=set(tests), budget=self.budget):
+                                  present=self.build.tests_present, only=set(tests), budget=self.budget,
+                                  slot=self.slot, seccomp=self.build.link.worker_seccomp):
                 outcome[r.test["name"]] = r
             self.timing["test"] += time.monotonic() - mark
         return [outcome.get(t["name"]) or TestResult(ex, t, False, failed.get(t["name"], "not run"), 0.0)
@@ -247,7 +248,8 @@ class LabGrader:
                               self.notes + [f"{self.lab.dir} compiles but does not link, so every test of this "
                                             f"lab scores 0. The linker's first errors:\n{error}"])
         return grade_binary(str(binary), self.lab.manifest, self.seed, self.sandbox, self.jobs,
-                            present=self.build.tests_present, budget=self.budget)
+                            present=self.build.tests_present, budget=self.budget, slot=self.slot,
+                            seccomp=self.build.link.worker_seccomp)
 
     # -- compiling
     def compile_all(self, files, changed):

@@ -1,6 +1,7 @@
 """The sandbox every untrusted process runs in: limits on time, CPU, memory, stack, file size
 and open files; the user `nobody` when the grader runs as root; a fresh private folder; its own
-process group, killed whole afterwards; an optional private results channel (two pipes)."""
+process group, killed whole afterwards. run_sandboxed runs the compiler and lists a program's
+tests; test processes are started by judged_run.launch_worker, with these limits."""
 import dataclasses
 import os
 import pathlib
@@ -49,12 +50,10 @@ class Run:
     returncode: int | None  # None: killed at the time limit
     seconds: float
     output: str             # stdout and stderr, the end of it
-    channel: bytes          # what arrived on the results channel
 
 
-def run_sandboxed(argv, sandbox, env_extra=None, nonce=None, cwd=None):
-    """Run argv under the sandbox in cwd (default: a fresh folder); with a nonce, open the
-    results channel."""
+def run_sandboxed(argv, sandbox, env_extra=None, cwd=None):
+    """Run argv under the sandbox in cwd (default: a fresh folder)."""
     ids = sandbox.identity()
     with tempfile.TemporaryDirectory(prefix="springlab-run-") as private:
         # The output file lives in the grader's private folder; the test writes it only
@@ -73,14 +72,6 @@ def run_sandboxed(argv, sandbox, env_extra=None, nonce=None, cwd=None):
         env = {"PATH": "/usr/bin:/bin", "HOME": str(home), "LANG": "C.UTF-8", "TMPDIR": str(home),
                "OMP_NUM_THREADS": "1"}
         env.update(env_extra or {})
-        fds = ()
-        if nonce is not None:
-            nonce_r, nonce_w = os.pipe()
-            result_r, result_w = os.pipe()
-            os.write(nonce_w, nonce.encode())
-            os.close(nonce_w)
-            env["SPRINGLAB_RESULT_CHANNEL"] = f"{nonce_r}:{result_w}"
-            fds = (nonce_r, result_w)
         limits = sandbox.limits()
 
         def in_child():
@@ -89,16 +80,10 @@ def run_sandboxed(argv, sandbox, env_extra=None, nonce=None, cwd=None):
 
         start = time.monotonic()
         proc = subprocess.Popen(argv, cwd=work, env=env, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
-                                pass_fds=fds, process_group=0, preexec_fn=in_child,
+                                process_group=0, preexec_fn=in_child,
                                 user=ids[0] if ids else None, group=ids[1] if ids else None,
                                 extra_groups=[] if ids else None)
-        channel = b""
         deadline = start + sandbox.timeout
-        if nonce is not None:
-            os.close(fds[0])
-            os.close(fds[1])
-            channel = read_until_closed(result_r, deadline)
-            os.close(result_r)
         try:
             code = proc.wait(timeout=max(0.0, deadline - time.monotonic()))
         except subprocess.TimeoutExpired:
@@ -118,7 +103,7 @@ def run_sandboxed(argv, sandbox, env_extra=None, nonce=None, cwd=None):
         if size > 8192:
             output = f"[... {size - 8192} bytes of output left out ...]\n" + output
         log.close()
-        return Run(code, seconds, output, channel)
+        return Run(code, seconds, output)
 
 
 def read_until_closed(fd, deadline, cap=1 << 20):
