@@ -28,7 +28,7 @@ def run(binary, seed, filt, workdir, timeout):
     """One process with SPRINGLAB_SEED=seed: {test: (status, message, random_draws)}."""
     out = pathlib.Path(workdir) / f"seed_{seed}.json"
     env = dict(os.environ, SPRINGLAB_SEED=str(seed))
-    env.pop("SPRINGLAB_RESULT_CHANNEL", None)
+    env.pop("SPRINGLAB_CALL_TRACE_FD", None)
     cmd = [str(binary), f"--gtest_output=json:{out}", "--gtest_brief=1"]
     if filt:
         cmd.append(f"--gtest_filter={filt}")

@@ -191,6 +191,19 @@ class TimeBudget(unittest.TestCase):
         self.assertGreater(slow, quick + 60)
         self.assertAlmostEqual(slow + quick, rule.limit)
 
+    def test_a_loaded_machine_stretches_no_budget(self):
+        # A class graded beside other work: load 14 on 2 cores makes a 12 s test count 12 / 7 s.
+        with tempfile.TemporaryDirectory() as folder:
+            loadavg = pathlib.Path(folder) / "loadavg"
+            loadavg.write_text("14.00 13.40 10.90 3/812 4242\n")
+            self.assertAlmostEqual(gtest_runner.machine_slowdown(loadavg, cores=2), 7.0)
+            loadavg.write_text("0.40 0.50 0.60 1/812 4242\n")  # idle: counted as is
+            self.assertEqual(gtest_runner.machine_slowdown(loadavg, cores=2), 1.0)
+            loadavg.write_text("1.00 1.00 1.00 41/812 4242\n")  # a burst just now: 40 runnable
+            self.assertEqual(gtest_runner.machine_slowdown(loadavg, cores=2), gtest_runner.MAX_SLOWDOWN)
+            self.assertEqual(gtest_runner.machine_slowdown(pathlib.Path(folder) / "missing", cores=2), 1.0)
+        self.assertAlmostEqual(gtest_runner.budget_seconds(12.0, slowdown=7.0), 12.0 / 7.0)
+
     def test_spent_budget_fails_the_remaining_tests(self):
         m = json.loads(json.dumps(MANIFEST))
         budget = gtest_runner.Budget(1)

@@ -10,6 +10,7 @@ import concurrent.futures
 import dataclasses
 import json
 import os
+import pathlib
 import random
 import re
 import signal
@@ -125,10 +126,37 @@ def listed_tests(binary, sandbox):
     return names
 
 
+# A loaded machine (a class graded two at a time beside other work) stretches every test's
+# wall time; budgets count a test's wall time divided by the machine's slowdown, so an honest
+# submission is not cut off because the grader shares its cores. At most this factor, so code
+# that loads the machine itself buys a bounded discount.
+MAX_SLOWDOWN = 8.0
+
+
+def machine_slowdown(loadavg="/proc/loadavg", cores=None):
+    """How many times slower than alone a CPU-bound test runs now: the larger of the 1-minute
+    load average and the tasks runnable this instant (besides the reader), per core; between 1
+    and MAX_SLOWDOWN. 1 where the load cannot be read (not Linux)."""
+    try:
+        fields = pathlib.Path(loadavg).read_text().split()
+        load, runnable = float(fields[0]), int(fields[3].split("/")[0]) - 1
+    except (OSError, ValueError, IndexError):
+        return 1.0
+    per_core = max(load, runnable) / (cores or os.cpu_count() or 1)
+    return min(MAX_SLOWDOWN, max(1.0, per_core))
+
+
+def budget_seconds(wall, slowdown=None):
+    """What a test's wall time counts in a budget (and in the reference's own time): the wall
+    time over the machine's slowdown when it ended."""
+    return wall / (machine_slowdown() if slowdown is None else slowdown)
+
+
 class Budget:
     """Seconds of test time a submission or a lab may spend (the sum of its tests' run times,
-    checked before each test starts); None as the limit means no budget. Budgets nest: a lab's
-    spending counts against its submission's too."""
+    each over the machine's slowdown when it ran: budget_seconds; checked before each test
+    starts); None as the limit means no budget. Budgets nest: a lab's spending counts against
+    its submission's too."""
 
     def __init__(self, limit, parent=None, what="lab"):
         self.limit, self.parent, self.what = limit, parent, what
@@ -149,8 +177,8 @@ class Budget:
 
     def message(self):
         return (f"time budget spent: this {self.what}'s tests had already run {self.spent:.0f} s, more than "
-                f"its budget of {self.limit:.0f} s (a multiple of the reference solution's own time), "
-                f"so this test was not run")
+                f"its budget of {self.limit:.0f} s (a multiple of the reference solution's own time; both "
+                f"counted as wall time over the machine's load), so this test was not run")
 
 
 @dataclasses.dataclass
@@ -192,7 +220,7 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
         else:
             outcome = run_test(binary, t["name"], seed, sandbox, slot=slot, seccomp=seccomp)
             if budget:
-                budget.spend(outcome.seconds)
+                budget.spend(budget_seconds(outcome.seconds))
         message = redact(outcome.message) if t["visibility"] != "visible" and outcome.message else outcome.message
         result = TestResult(ex, t, outcome.passed, message, outcome.seconds)
         if on_result:
@@ -224,7 +252,7 @@ def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget
             passed, message = outcome_of(run, t["name"], sandbox.timeout)
             outcome = Outcome(passed, message, run.seconds)
             if budget:
-                budget.spend(outcome.seconds)
+                budget.spend(budget_seconds(outcome.seconds))
         message = redact(outcome.message) if t["visibility"] != "visible" and outcome.message else outcome.message
         return TestResult(ex, t, outcome.passed, message, outcome.seconds)
 
