@@ -60,6 +60,21 @@ SpringFamilies::SpringFamilies(const std::vector<Spring>& springs, int masses)
   for (std::size_t k = 0; k < springs.size(); ++k) {
     if (!inFamily[k]) leftovers_.push_back(static_cast<int>(k));
   }
+  // Runs cut at every kBlockMasses-th mass and ordered block by block, all families of a block
+  // in a row: a grid lists each mass's springs together, so a block's spring records (and its
+  // masses) are read from cache by every family instead of once per family from memory.
+  std::vector<Run> blocked;
+  for (const Run& run : runs_) {
+    for (int t = 0; t < run.count;) {
+      const int first = run.first + t;
+      const int count = std::min(run.count - t, kBlockMasses - first % kBlockMasses);
+      blocked.push_back(Run{first, count, run.spring + t, run.family});
+      t += count;
+    }
+  }
+  std::stable_sort(blocked.begin(), blocked.end(),
+                   [](const Run& a, const Run& b) { return a.first / kBlockMasses < b.first / kBlockMasses; });
+  runs_ = std::move(blocked);
   // Zeros around each buffer: gather() reads forces(family)[i - d] for every mass i.
   buffers_.assign(offsets_.size(), std::vector<Vec3>(static_cast<std::size_t>(std::max(masses, 0) + 2 * pad_), Vec3::Zero()));
 }

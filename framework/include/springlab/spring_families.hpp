@@ -53,6 +53,8 @@ class SpringFamilies {
   SpringFamilies(const std::vector<Spring>& springs, int masses);
 
   static constexpr int kMaxFamilies = 8;
+  // Runs are cut into blocks of this many masses (see the constructor).
+  static constexpr int kBlockMasses = 128;
 
   // Whether these families were made for this many springs and masses.
   bool fits(std::size_t springs, int masses) const { return springs == springCount_ && masses == masses_; }

@@ -144,8 +144,9 @@ bool Net::familySpringForces(const State& s) {
 }
 
 // Both loops below run once per spring per step: `flatten` inlines the exercises they call
-// where the compiler sees them (the reference is built as one unit). Springs run in batches
-// on several threads (springlab/spring_batches.hpp); the sums do not depend on the count.
+// where the compiler sees them (the reference is built as one unit). The force pass sorts the
+// springs into families (springlab/spring_families.hpp): its sums do not depend on the list's
+// order or the thread count; they differ from a plain loop over the list in round-off only.
 std::vector<std::string> Net::forceTermNames() const {
   return {"spring forces (exercise 2.2, springDamperForce)", "gravity and air friction",
           "wind (exercises 2.3 and 2.4, vertexNormals and windForce)"};
@@ -191,36 +192,48 @@ std::vector<std::string> Net::forceTermNames() const {
 }
 
 [[gnu::flatten]] bool Net::addForceJacobian(const State& s, ForceJacobian& J) {
-  // Springs (exercise 2.7), in the order of `springs`; the wind stays explicit. Each pair is
-  // written once (resize leaves them unset), by whichever thread computes it.
-  J.pairs.resize(springs.size());
-  // Each thread takes one contiguous block of springs (as schedule(static) would) inside one
-  // try: a missing exercise 2.7 reaches the caller instead of std::terminate, and the loop
-  // stays as tight as a plain one (a handler per spring or per chunk cost 35-45 % more
-  // instructions in this loop).
+  // Springs (exercise 2.7), in the order of `springs`; the wind stays explicit.
   const int count = static_cast<int>(springs.size());
-  LoopExceptions exceptions;
   const int budget = count > kParallelSprings ? threadBudget() : 1;
-#pragma omp parallel if (budget > 1) num_threads(budget)
-  {
-    int first = 0, last = count;
-#ifdef _OPENMP
-    const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
-    first = static_cast<int>(static_cast<long>(count) * thread / threads);
-    last = static_cast<int>(static_cast<long>(count) * (thread + 1) / threads);
-#endif
-    try {
-      for (int k = first; k < last; ++k) {
-        const Spring& sp = springs[static_cast<std::size_t>(k)];
-        const SpringJacobian sj =
-            springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant, sp.springLength, sp.frictionConstant);
-        J.pairs[static_cast<std::size_t>(k)] = ForceJacobian::Pair(sp.mass1, sp.mass2, sj.dx, sj.dv);
-      }
-    } catch (...) {
-      exceptions.capture();
+  // One thread: each pair written once, appended (the vector keeps its capacity across steps).
+  // resize() would first write every pair's ends, a pass over all 152 bytes of each (3.6 MB at
+  // r = 64, 5 % of the thesis frame).
+  if (budget <= 1) {
+    J.pairs.reserve(springs.size());
+    for (const Spring& sp : springs) {
+      const SpringJacobian sj =
+          springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant, sp.springLength, sp.frictionConstant);
+      J.pairs.emplace_back(sp.mass1, sp.mass2, sj.dx, sj.dv);
     }
+  } else {
+    // Threads: each pair written once (resize leaves them unset), by whichever thread computes
+    // it. Each thread takes one contiguous block of springs (as schedule(static) would) inside
+    // one try: a missing exercise 2.7 reaches the caller instead of std::terminate, and the
+    // loop stays as tight as a plain one (a handler per spring or per chunk cost 35-45 % more
+    // instructions in this loop).
+    J.pairs.resize(springs.size());
+    LoopExceptions exceptions;
+#pragma omp parallel num_threads(budget)
+    {
+      int first = 0, last = count;
+#ifdef _OPENMP
+      const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
+      first = static_cast<int>(static_cast<long>(count) * thread / threads);
+      last = static_cast<int>(static_cast<long>(count) * (thread + 1) / threads);
+#endif
+      try {
+        for (int k = first; k < last; ++k) {
+          const Spring& sp = springs[static_cast<std::size_t>(k)];
+          const SpringJacobian sj = springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant,
+                                                   sp.springLength, sp.frictionConstant);
+          J.pairs[static_cast<std::size_t>(k)] = ForceJacobian::Pair(sp.mass1, sp.mass2, sj.dx, sj.dv);
+        }
+      } catch (...) {
+        exceptions.capture();
+      }
+    }
+    exceptions.rethrow();
   }
-  exceptions.rethrow();
   // Air friction, -c m v on each mass.
   if (settings.airFriction > 0.0) {
     for (int i = 0; i < numOfMasses(); ++i) {
@@ -256,7 +269,8 @@ void Net::afterStep(double dt) {
   // sphere would otherwise cut into it.
   const PhaseProfile::Scope collisions(profile, Phase::kCollisions);
   const double offset = settings.contactOffset;
-  for (int i = 0; i < numOfMasses(); ++i) {
+  const bool colliders = !spheres_.empty() || !settings.planes.empty();  // else no pass over the masses
+  for (int i = 0; colliders && i < numOfMasses(); ++i) {
     if (inverseMass_[static_cast<std::size_t>(i)] == 0.0) continue;
     for (const SphereCollider& sphere : spheres_) {
       const Contact c = sphereContact(state.pos[i], sphere.center, sphere.radius + offset);
