@@ -76,7 +76,8 @@ SpringFamilies::SpringFamilies(const std::vector<Spring>& springs, int masses)
                    [](const Run& a, const Run& b) { return a.first / kBlockMasses < b.first / kBlockMasses; });
   runs_ = std::move(blocked);
   // Zeros around each buffer: gather() reads forces(family)[i - d] for every mass i.
-  buffers_.assign(offsets_.size(), std::vector<Vec3>(static_cast<std::size_t>(std::max(masses, 0) + 2 * pad_), Vec3::Zero()));
+  const std::size_t length = static_cast<std::size_t>(std::max(masses, 0) + 2 * pad_);
+  buffers_.assign(offsets_.size(), std::vector<Vec3>(length, Vec3::Zero()));
 }
 
 bool hasAvx2() {

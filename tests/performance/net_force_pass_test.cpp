@@ -121,7 +121,8 @@ TEST(SpringFamilies, SortAGridIntoItsSixOffsetsAndTakeEverySpringOnce) {
   // Every run's springs join first + t to first + t + d.
   for (const SpringFamilies::Run& run : families.runs()) {
     for (int t = 0; t < run.count; ++t) {
-      const Spring& s = cloth->springs[static_cast<std::size_t>(families.order()[static_cast<std::size_t>(run.spring + t)])];
+      const int k = families.order()[static_cast<std::size_t>(run.spring + t)];
+      const Spring& s = cloth->springs[static_cast<std::size_t>(k)];
       ASSERT_EQ(s.mass1, run.first + t);
       ASSERT_EQ(s.mass2, run.first + t + families.offset(run.family));
     }

@@ -206,11 +206,11 @@ std::vector<std::string> Net::forceTermNames() const {
       J.pairs.emplace_back(sp.mass1, sp.mass2, sj.dx, sj.dv);
     }
   } else {
-    // Threads: each pair written once (resize leaves them unset), by whichever thread computes
-    // it. Each thread takes one contiguous block of springs (as schedule(static) would) inside
-    // one try: a missing exercise 2.7 reaches the caller instead of std::terminate, and the
-    // loop stays as tight as a plain one (a handler per spring or per chunk cost 35-45 % more
-    // instructions in this loop).
+    // Threads: each pair's blocks written once (resize leaves them unset), by whichever thread
+    // computes it. Each thread takes one contiguous block of springs (as schedule(static)
+    // would) inside one try: a missing exercise 2.7 reaches the caller instead of
+    // std::terminate, and the loop stays as tight as a plain one (a handler per spring or per
+    // chunk cost 35-45 % more instructions in this loop).
     J.pairs.resize(springs.size());
     LoopExceptions exceptions;
 #pragma omp parallel num_threads(budget)
