@@ -55,36 +55,121 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
   markInitialState();
 }
 
+namespace {
+
+// One run of springs (springlab/spring_families.hpp): mass first + t to mass first + d + t.
+// Its ends are two contiguous stretches of pos and vel, so this loop vectorises where the
+// exercise is inlined (the reference, built as one unit): several springs per sqrt and
+// division instruction. Returns false when a spring no longer joins the masses the run says.
+// (out is restrict here and in the two functions below, which the compiler vectorises: it
+// then knows the forces overwrite no input.)
+[[gnu::always_inline]] inline bool runOfSprings(const Spring* springs, const int* index, const Vec3* x1,
+                                                const Vec3* x2, const Vec3* v1, const Vec3* v2,
+                                                Vec3* __restrict out, int count, int first, int d) {
+  int moved = 0;  // nonzero: a spring's ends are not the run's
+  for (int t = 0; t < count; ++t) {
+    const Spring& sp = springs[index[t]];
+    moved |= (sp.mass1 - first - t) | (sp.mass2 - first - d - t);
+    // Velocities read here, not only inside the exercise's l != 0 branch: loads every spring
+    // makes anyway, so the compiler may turn that branch into a select.
+    const Vec3 u1(v1[t].x(), v1[t].y(), v1[t].z()), u2(v2[t].x(), v2[t].y(), v2[t].z());
+    out[t] = springDamperForce(x1[t], x2[t], u1, u2, sp.springConstant, sp.springLength, sp.frictionConstant);
+  }
+  return moved == 0;
+}
+
+[[gnu::flatten]] bool runOfSpringsPortable(const Spring* springs, const int* index, const Vec3* x1, const Vec3* x2,
+                                           const Vec3* v1, const Vec3* v2, Vec3* __restrict out, int count, int first,
+                                           int d) {
+  return runOfSprings(springs, index, x1, x2, v1, v2, out, count, first, d);
+}
+
+#if SPRINGLAB_AVX2_VARIANT
+[[gnu::flatten]] SPRINGLAB_TARGET_AVX2 bool runOfSpringsAvx2(const Spring* springs, const int* index, const Vec3* x1,
+                                                             const Vec3* x2, const Vec3* v1, const Vec3* v2,
+                                                             Vec3* __restrict out, int count, int first, int d) {
+  return runOfSprings(springs, index, x1, x2, v1, v2, out, count, first, d);
+}
+#endif
+
+// The runs [firstRun, lastRun) into their families' buffers.
+bool runSpringForces(const Spring* springs, const int* order, const SpringFamilies::Run* runs, int firstRun,
+                     int lastRun, const int* offsets, Vec3* const* buffers, const Vec3* pos, const Vec3* vel) {
+  bool listed = true;
+#if SPRINGLAB_AVX2_VARIANT
+  const auto runOf = hasAvx2() ? runOfSpringsAvx2 : runOfSpringsPortable;
+#else
+  const auto runOf = runOfSpringsPortable;
+#endif
+  for (int r = firstRun; r < lastRun; ++r) {
+    const SpringFamilies::Run& run = runs[r];
+    const int d = offsets[run.family];
+    listed = runOf(springs, order + run.spring, pos + run.first, pos + run.first + d, vel + run.first,
+                   vel + run.first + d, buffers[run.family] + run.first, run.count, run.first, d) &&
+             listed;
+  }
+  return listed;
+}
+
+}  // namespace
+
+bool Net::familySpringForces(const State& s) {
+  int offsets[SpringFamilies::kMaxFamilies];
+  Vec3* buffers[SpringFamilies::kMaxFamilies];
+  for (int q = 0; q < families_.families(); ++q) {
+    offsets[q] = families_.offset(q);
+    buffers[q] = families_.forces(q);
+  }
+  const std::vector<SpringFamilies::Run>& runs = families_.runs();
+  const int count = static_cast<int>(runs.size());
+  const int threads = springs.size() >= static_cast<std::size_t>(kParallelSprings) ? threadBudget() : 1;
+  if (threads <= 1) {
+    return runSpringForces(springs.data(), families_.order().data(), runs.data(), 0, count, offsets, buffers,
+                           s.pos.data(), s.vel.data());
+  }
+  // Each thread a share of the runs; springDamperForce may throw (a missing exercise 2.2):
+  // carried out of the parallel region.
+  LoopExceptions exceptions;
+  int listed = 1;
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(&& : listed)
+  for (int t = 0; t < threads; ++t) {
+    exceptions.run([&] {
+      listed = runSpringForces(springs.data(), families_.order().data(), runs.data(), count * t / threads,
+                               count * (t + 1) / threads, offsets, buffers, s.pos.data(), s.vel.data()) &&
+               listed;
+    });
+  }
+  exceptions.rethrow();
+  return listed != 0;
+}
+
 // Both loops below run once per spring per step: `flatten` inlines the exercises they call
-// where the compiler sees them (the reference is built as one unit). Springs run in batches
-// on several threads (springlab/spring_batches.hpp); the sums do not depend on the count.
+// where the compiler sees them (the reference is built as one unit). The force pass sorts the
+// springs into families (springlab/spring_families.hpp): its sums do not depend on the list's
+// order or the thread count; they differ from a plain loop over the list in round-off only.
 std::vector<std::string> Net::forceTermNames() const {
   return {"spring forces (exercise 2.2, springDamperForce)", "gravity and air friction",
           "wind (exercises 2.3 and 2.4, vertexNormals and windForce)"};
 }
 
 [[gnu::flatten]] void Net::accumulateForces(const State& s, std::vector<Vec3>& f) {
-  // Springs: equal and opposite on their ends (exercise 2.2).
-  if (!batches_.fits(springs.size())) batches_ = SpringBatches(springs);
-  // A grid lists up to six springs of one first mass in a row: their forces on it add up in
-  // a register and land once, instead of six dependent read-add-writes of f[mass1].
-  if (forceTermOn(kSprings)) batches_.forEachBatch([&](int first, int last) {
-    int pending = -1;  // the first mass whose sum is held in `sum`
-    Vec3 sum = Vec3::Zero();
-    for (int k = first; k < last; ++k) {
+  // Springs: equal and opposite on their ends (exercise 2.2), family by family
+  // (springlab/spring_families.hpp), then the springs no family takes.
+  if (forceTermOn(kSprings)) {
+    if (!families_.fits(springs.size(), numOfMasses()) || !familySpringForces(s)) {
+      // A new or edited spring list: sort it again.
+      families_ = SpringFamilies(springs, numOfMasses());
+      familySpringForces(s);
+    }
+    families_.gather(f);
+    for (const int k : families_.leftovers()) {
       const Spring& sp = springs[static_cast<std::size_t>(k)];
       const Vec3 f1 = springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
                                         sp.springConstant, sp.springLength, sp.frictionConstant);
-      if (sp.mass1 != pending) {
-        if (pending >= 0) f[pending] += sum;
-        pending = sp.mass1;
-        sum.setZero();
-      }
-      sum += f1;
+      f[sp.mass1] += f1;
       f[sp.mass2] -= f1;
     }
-    if (pending >= 0) f[pending] += sum;
-  });
+  }
   // Gravity and air friction on each mass.
   const int n = numOfMasses();
   if (forceTermOn(kGravityAndAir)) {
@@ -107,36 +192,48 @@ std::vector<std::string> Net::forceTermNames() const {
 }
 
 [[gnu::flatten]] bool Net::addForceJacobian(const State& s, ForceJacobian& J) {
-  // Springs (exercise 2.7), in the order of `springs`; the wind stays explicit. Each pair is
-  // written once (resize leaves them unset), by whichever thread computes it.
-  J.pairs.resize(springs.size());
-  // Each thread takes one contiguous block of springs (as schedule(static) would) inside one
-  // try: a missing exercise 2.7 reaches the caller instead of std::terminate, and the loop
-  // stays as tight as a plain one (a handler per spring or per chunk cost 35-45 % more
-  // instructions in this loop).
+  // Springs (exercise 2.7), in the order of `springs`; the wind stays explicit.
   const int count = static_cast<int>(springs.size());
-  LoopExceptions exceptions;
   const int budget = count > kParallelSprings ? threadBudget() : 1;
-#pragma omp parallel if (budget > 1) num_threads(budget)
-  {
-    int first = 0, last = count;
-#ifdef _OPENMP
-    const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
-    first = static_cast<int>(static_cast<long>(count) * thread / threads);
-    last = static_cast<int>(static_cast<long>(count) * (thread + 1) / threads);
-#endif
-    try {
-      for (int k = first; k < last; ++k) {
-        const Spring& sp = springs[static_cast<std::size_t>(k)];
-        const SpringJacobian sj =
-            springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant, sp.springLength, sp.frictionConstant);
-        J.pairs[static_cast<std::size_t>(k)] = ForceJacobian::Pair(sp.mass1, sp.mass2, sj.dx, sj.dv);
-      }
-    } catch (...) {
-      exceptions.capture();
+  // One thread: each pair written once, appended (the vector keeps its capacity across steps).
+  // resize() would first write every pair's ends, a pass over all 152 bytes of each (3.6 MB at
+  // r = 64, 5 % of the thesis frame).
+  if (budget <= 1) {
+    J.pairs.reserve(springs.size());
+    for (const Spring& sp : springs) {
+      const SpringJacobian sj =
+          springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant, sp.springLength, sp.frictionConstant);
+      J.pairs.emplace_back(sp.mass1, sp.mass2, sj.dx, sj.dv);
     }
+  } else {
+    // Threads: each pair's blocks written once (resize leaves them unset), by whichever thread
+    // computes it. Each thread takes one contiguous block of springs (as schedule(static)
+    // would) inside one try: a missing exercise 2.7 reaches the caller instead of
+    // std::terminate, and the loop stays as tight as a plain one (a handler per spring or per
+    // chunk cost 35-45 % more instructions in this loop).
+    J.pairs.resize(springs.size());
+    LoopExceptions exceptions;
+#pragma omp parallel num_threads(budget)
+    {
+      int first = 0, last = count;
+#ifdef _OPENMP
+      const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
+      first = static_cast<int>(static_cast<long>(count) * thread / threads);
+      last = static_cast<int>(static_cast<long>(count) * (thread + 1) / threads);
+#endif
+      try {
+        for (int k = first; k < last; ++k) {
+          const Spring& sp = springs[static_cast<std::size_t>(k)];
+          const SpringJacobian sj = springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant,
+                                                   sp.springLength, sp.frictionConstant);
+          J.pairs[static_cast<std::size_t>(k)] = ForceJacobian::Pair(sp.mass1, sp.mass2, sj.dx, sj.dv);
+        }
+      } catch (...) {
+        exceptions.capture();
+      }
+    }
+    exceptions.rethrow();
   }
-  exceptions.rethrow();
   // Air friction, -c m v on each mass.
   if (settings.airFriction > 0.0) {
     for (int i = 0; i < numOfMasses(); ++i) {
@@ -172,7 +269,8 @@ void Net::afterStep(double dt) {
   // sphere would otherwise cut into it.
   const PhaseProfile::Scope collisions(profile, Phase::kCollisions);
   const double offset = settings.contactOffset;
-  for (int i = 0; i < numOfMasses(); ++i) {
+  const bool colliders = !spheres_.empty() || !settings.planes.empty();  // else no pass over the masses
+  for (int i = 0; colliders && i < numOfMasses(); ++i) {
     if (inverseMass_[static_cast<std::size_t>(i)] == 0.0) continue;
     for (const SphereCollider& sphere : spheres_) {
       const Contact c = sphereContact(state.pos[i], sphere.center, sphere.radius + offset);

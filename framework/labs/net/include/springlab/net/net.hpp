@@ -15,6 +15,7 @@
 #include <springlab/scene_shapes.hpp>
 #include <springlab/simulation.hpp>
 #include <springlab/spring_batches.hpp>
+#include <springlab/spring_families.hpp>
 
 namespace springlab::net {
 
@@ -65,7 +66,11 @@ class Net final : public Simulation {
   int rows_ = 0;
   std::vector<SphereCollider> spheres_;            // current colliders
   std::vector<ColliderDrag> drags_;                // [spheres] where the user holds each one
-  SpringBatches batches_;                          // the springs split for threads (force pass)
+  // The spring forces of state s into families_' buffers; false (and unfinished) when a spring
+  // no longer joins the masses its family's run says: the list was edited since it was sorted.
+  bool familySpringForces(const State& s);
+
+  SpringFamilies families_;                        // the springs sorted for the force pass
   std::vector<Vec3> normals_;                      // [n] scratch for the wind
   std::vector<double> areas_;                      // [n] m^2
   std::vector<double> inverseMass_;                // [n] scratch for stretch limiting

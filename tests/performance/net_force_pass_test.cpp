@@ -1,0 +1,147 @@
+// The cloth's force pass sorts its springs into families (springlab/spring_families.hpp) and
+// sums them per mass in its own order: the forces must still be every spring's force added to
+// both its ends, as a plain loop over the list gives them, to round-off; and a spring list
+// edited after the first pass (reordered, rewired, with a duplicate) must be followed, not the
+// families sorted from the old one.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include <springlab/net/net.hpp>
+#include <springlab/spring_families.hpp>
+
+namespace springlab {
+namespace {
+
+// A 24 x 24 cloth with gravity and air friction, every mass moved and set moving at random,
+// every spring's k, L0 and kd drawn at random.
+std::unique_ptr<net::Net> randomCloth(unsigned seed) {
+  net::NetParameters p;
+  p.resolution = 24;
+  p.massModel = net::MassModel::Constant;
+  p.particleMass = 0.5;
+  p.springs[SpringKind::Structural] = {true, 75.0, 0.25};
+  p.springs[SpringKind::Shear] = {true, 22.0, 0.25};
+  p.springs[SpringKind::Bend] = {true, 8.0, 0.25};
+  p.pins = {net::Pin::Corner00, net::Pin::Corner10};
+  p.airFriction = 0.3;
+  p.wind.drag = 0.0;  // no wind: the pass compared here is springs, gravity and air friction
+  auto cloth = std::make_unique<net::Net>(3, p);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02), speed(-1.0, 1.0), factor(0.5, 2.0);
+  for (Vec3& x : cloth->state.pos) x += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  for (Vec3& v : cloth->state.vel) v = Vec3(speed(rng), speed(rng), speed(rng));
+  for (Spring& s : cloth->springs) {
+    s.springConstant *= factor(rng);
+    s.springLength *= factor(rng);
+    s.frictionConstant *= factor(rng);
+  }
+  return cloth;
+}
+
+// The forces as the handout adds them: springs in list order, each on both ends, then gravity
+// and air friction. Also the size of what met at each mass (|each term| summed), the scale of
+// its round-off.
+void plainForces(const net::Net& cloth, std::vector<Vec3>& f, std::vector<double>& scale) {
+  const State& s = cloth.state;
+  f.assign(s.pos.size(), Vec3::Zero());
+  scale.assign(s.pos.size(), 0.0);
+  for (const Spring& sp : cloth.springs) {
+    const Vec3 f1 = net::springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
+                                           sp.springConstant, sp.springLength, sp.frictionConstant);
+    f[sp.mass1] += f1;
+    f[sp.mass2] -= f1;
+    scale[sp.mass1] += f1.norm();
+    scale[sp.mass2] += f1.norm();
+  }
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const Vec3 own = cloth.masses[i].m * (cloth.gravitation - cloth.settings.airFriction * s.vel[i]);
+    f[i] += own;
+    scale[i] += own.norm();
+  }
+}
+
+// The largest difference between the force pass and the plain sum, relative to the size of
+// what met at that mass.
+double largestRelativeDifference(net::Net& cloth) {
+  std::vector<Vec3> expected;
+  std::vector<double> scale;
+  plainForces(cloth, expected, scale);
+  cloth.evaluateForces(cloth.state, cloth.force);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    worst = std::max(worst, (cloth.force[i] - expected[i]).norm() / std::max(scale[i], 1e-300));
+  }
+  return worst;
+}
+
+TEST(NetForcePass, AddsEverySpringsForceToBothEndsToRoundOff) {
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    std::unique_ptr<net::Net> cloth = randomCloth(seed);
+    EXPECT_LE(largestRelativeDifference(*cloth), 1e-12)
+        << "seed " << seed << ": the force pass is not the sum of every spring's force on both its ends (plus gravity "
+        << "and air friction) beyond round-off";
+  }
+}
+
+TEST(NetForcePass, FollowsASpringListEditedAfterTheFirstPass) {
+  std::unique_ptr<net::Net> cloth = randomCloth(7);
+  ASSERT_LE(largestRelativeDifference(*cloth), 1e-12);
+  std::mt19937 rng(7);
+  std::vector<Spring>& springs = cloth->springs;
+
+  // The same springs in another order: the families' records moved.
+  std::shuffle(springs.begin(), springs.end(), rng);
+  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after shuffling the spring list";
+
+  // Rewired ends with the same count: one spring now joins two far masses, another is reversed.
+  springs[10].mass2 = static_cast<int>(cloth->masses.size()) - 1;
+  std::swap(springs[20].mass1, springs[20].mass2);
+  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after rewiring two springs";
+
+  // A second spring between the same masses (it fits no family) and one spring fewer.
+  springs.push_back(springs[30]);
+  springs.erase(springs.begin() + 40);
+  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after duplicating one spring and removing another";
+}
+
+TEST(SpringFamilies, SortAGridIntoItsSixOffsetsAndTakeEverySpringOnce) {
+  std::unique_ptr<net::Net> cloth = randomCloth(3);
+  const int n = static_cast<int>(cloth->masses.size());
+  const SpringFamilies families(cloth->springs, n);
+  // Structural (1, 24), shear (23, 25), bend (2, 48) on a 24-wide grid.
+  EXPECT_EQ(families.families(), 6);
+  EXPECT_TRUE(families.leftovers().empty());
+  std::vector<int> seen(cloth->springs.size(), 0);
+  for (const int k : families.order()) ++seen[static_cast<std::size_t>(k)];
+  for (const int k : families.leftovers()) ++seen[static_cast<std::size_t>(k)];
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(seen.size())) << "a spring is missing or twice";
+  // Every run's springs join first + t to first + t + d.
+  for (const SpringFamilies::Run& run : families.runs()) {
+    for (int t = 0; t < run.count; ++t) {
+      const int k = families.order()[static_cast<std::size_t>(run.spring + t)];
+      const Spring& s = cloth->springs[static_cast<std::size_t>(k)];
+      ASSERT_EQ(s.mass1, run.first + t);
+      ASSERT_EQ(s.mass2, run.first + t + families.offset(run.family));
+    }
+  }
+}
+
+TEST(SpringFamilies, LeaveARareOffsetAndADuplicateOver) {
+  // Ten masses in a row: nine springs of offset 1, one of offset 5, one duplicate of 0-1.
+  std::vector<Spring> springs;
+  for (int i = 0; i + 1 < 10; ++i) springs.push_back(Spring{i, i + 1, 1.0, 1.0, 0.0, SpringKind::Structural});
+  springs.push_back(Spring{2, 7, 1.0, 5.0, 0.0, SpringKind::Structural});
+  springs.push_back(Spring{0, 1, 1.0, 1.0, 0.0, SpringKind::Structural});
+  const SpringFamilies families(springs, 10);
+  ASSERT_EQ(families.families(), 1);
+  EXPECT_EQ(families.offset(0), 1);
+  ASSERT_EQ(families.runs().size(), 1u);
+  EXPECT_EQ(families.runs()[0].count, 9);
+  EXPECT_EQ(families.leftovers(), (std::vector<int>{9, 10}));
+}
+
+}  // namespace
+}  // namespace springlab
