@@ -86,14 +86,14 @@ TEST(FabricSolve, SmoothedAggregationBuildsItsHierarchyOncePerLayoutNotPerStep) 
     EXPECT_LE(relativeResidual(system, x), 1e-6) << "step " << n << ", with the coarse level of an earlier step";
     sim.operate(dt);
   }
-  EXPECT_LE(amg.coarseBuilds(), kSteps / 4) << "the coarse level is kept while it still preconditions well";
+  EXPECT_LE(amg.prolongatorBuilds(), kSteps / 4) << "P is kept while it still preconditions well";
 
   // A new layout (one more mass held, as the viewer's grab does): new aggregates at once.
-  const int builds = amg.coarseBuilds();
+  const int builds = amg.prolongatorBuilds();
   free[free.size() / 2] = 0;
   assemble(sim, dt, free, J, system);
   amg.solve(system, x);
-  EXPECT_EQ(amg.coarseBuilds(), builds + 1);
+  EXPECT_EQ(amg.prolongatorBuilds(), builds + 1);
   EXPECT_LE(relativeResidual(system, x), 1e-6);
 }
 
