@@ -3,282 +3,344 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 #include <utility>
-
-#include <Eigen/Dense>
 
 namespace springlab {
 
 namespace {
-constexpr double kProlongatorDamping = 2.0 / 3.0;  // omega of P = (I - omega D^-1 A) P0
+constexpr double kProlongatorDamping = 2.0 / 3.0;  // omega of P = (I - omega D^-1 A_F) P0
 constexpr double kSmootherDamping = 2.0 / 3.0;     // omega of the block-Jacobi sweeps
 constexpr double kStrongCoupling = 0.05;           // |A_ij| / max_j |A_ij| of a strong neighbour
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-// Each block row's neighbours (block column, A_ij summed over the pairs that join them),
-// sorted by column.
-std::vector<std::vector<std::pair<int, Mat3>>> neighbours(const BlockSystem& system) {
-  std::vector<std::vector<std::pair<int, Mat3>>> rows(system.diagonalBlocks().size());
-  const auto& pairRows = system.pairRows();
-  const auto& coupling = system.couplingBlocks();
-  auto add = [&](int bi, int bj, const Mat3& c) {
-    auto& row = rows[at(bi)];
-    auto found = std::find_if(row.begin(), row.end(), [bj](const auto& e) { return e.first == bj; });
-    if (found == row.end()) {
-      row.push_back({bj, c});
-    } else {
-      found->second += c;
-    }
-  };
-  for (std::size_t k = 0; k < pairRows.size(); ++k) {
-    const auto [ri, rj] = pairRows[k];
-    if (ri < 0) continue;
-    add(ri / 3, rj / 3, coupling[k]);
-    add(rj / 3, ri / 3, coupling[k]);
-  }
-  for (auto& row : rows) std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  return rows;
-}
+using BlockRows = SmoothedAggregationCG::BlockRows;
 
-// The slot of column `col` in row b of `rows` (the column is there by construction).
-template <class Rows>
-int slotOf(const Rows& rows, int b, int col) {
+// The slot of column `col` in row b (it is there by construction).
+int slotOf(const BlockRows& rows, int b, int col) {
   const auto first = rows.col.begin() + rows.start[at(b)], last = rows.col.begin() + rows.start[at(b) + 1];
   const auto found = std::lower_bound(first, last, col);
   if (found == last || *found != col) throw std::logic_error("SmoothedAggregationCG: a block outside its pattern");
   return static_cast<int>(found - rows.col.begin());
 }
+
+// Rows whose columns are columnsOf(b, cols) (sorted and made unique here), values zero.
+template <class Columns>
+BlockRows patternOf(int rows, Columns&& columnsOf) {
+  BlockRows out;
+  std::vector<int> cols;
+  for (int b = 0; b < rows; ++b) {
+    cols.clear();
+    columnsOf(b, cols);
+    std::sort(cols.begin(), cols.end());
+    cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+    out.col.insert(out.col.end(), cols.begin(), cols.end());
+    out.start.push_back(static_cast<int>(out.col.size()));
+  }
+  out.value.assign(out.col.size(), Mat3::Zero());
+  return out;
+}
+
+std::vector<int> diagonalSlots(const BlockRows& A) {
+  std::vector<int> slots(at(A.rows()));
+  for (int b = 0; b < A.rows(); ++b) slots[at(b)] = slotOf(A, b, b);
+  return slots;
+}
+
+void invertDiagonal(const BlockRows& A, const std::vector<int>& diagonalSlot, std::vector<Mat3>& inverse) {
+  inverse.resize(diagonalSlot.size());
+  for (std::size_t b = 0; b < diagonalSlot.size(); ++b) inverse[b] = A.value[at(diagonalSlot[b])].inverse();
+}
+
+// next = P^T A P through the layout's indices (AP is kept in the level).
+void galerkin(const BlockRows& A, const BlockRows& P, BlockRows& AP, const std::vector<int>& apOf,
+              const std::vector<int>& coarseOf, BlockRows& next) {
+  std::fill(AP.value.begin(), AP.value.end(), Mat3::Zero());
+  const int* target = apOf.data();
+  for (int b = 0; b < A.rows(); ++b) {
+    for (int e = A.start[at(b)]; e < A.start[at(b) + 1]; ++e) {
+      const Mat3& a = A.value[at(e)];
+      const int j = A.col[at(e)];
+      for (int s = P.start[at(j)]; s < P.start[at(j) + 1]; ++s) AP.value[at(*target++)].noalias() += a * P.value[at(s)];
+    }
+  }
+  std::fill(next.value.begin(), next.value.end(), Mat3::Zero());
+  target = coarseOf.data();
+  for (int b = 0; b < A.rows(); ++b) {
+    for (int s = P.start[at(b)]; s < P.start[at(b) + 1]; ++s) {
+      const Mat3 pT = P.value[at(s)].transpose();
+      for (int t = AP.start[at(b)]; t < AP.start[at(b) + 1]; ++t) next.value[at(*target++)].noalias() += pT * AP.value[at(t)];
+    }
+  }
+}
 }  // namespace
 
-void SmoothedAggregationCG::buildLayout(const BlockSystem& system) {
-  const int blocks = static_cast<int>(system.diagonalBlocks().size());
-  const auto rows = neighbours(system);
+void SmoothedAggregationCG::BlockRows::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  y.resize(3 * rows());
+  for (int b = 0; b < rows(); ++b) {
+    Vec3 sum = Vec3::Zero();
+    for (int e = start[at(b)]; e < start[at(b) + 1]; ++e) sum.noalias() += value[at(e)] * x.segment<3>(3 * col[at(e)]);
+    y.segment<3>(3 * b) = sum;
+  }
+}
 
+void SmoothedAggregationCG::aggregate(Level& level) {
+  const BlockRows& A = level.A;
+  const int rows = A.rows();
   // Strong neighbours: couplings within kStrongCoupling of the row's strongest.
-  std::vector<std::vector<int>> strong(at(blocks));
-  for (int b = 0; b < blocks; ++b) {
+  level.strong.assign(A.col.size(), 0);
+  std::vector<std::vector<int>> strong(at(rows));
+  for (int b = 0; b < rows; ++b) {
     double strongest = 0.0;
-    for (const auto& [j, c] : rows[at(b)]) strongest = std::max(strongest, c.norm());
-    for (const auto& [j, c] : rows[at(b)]) {
-      if (c.norm() >= kStrongCoupling * strongest) strong[at(b)].push_back(j);
+    for (int e = A.start[at(b)]; e < A.start[at(b) + 1]; ++e) {
+      if (A.col[at(e)] != b) strongest = std::max(strongest, A.value[at(e)].norm());
+    }
+    for (int e = A.start[at(b)]; e < A.start[at(b) + 1]; ++e) {
+      if (A.col[at(e)] != b && strongest > 0.0 && A.value[at(e)].norm() >= kStrongCoupling * strongest) {
+        level.strong[at(e)] = 1;
+        strong[at(b)].push_back(A.col[at(e)]);
+      }
     }
   }
 
-  // A mass none of whose strong neighbours is taken starts an aggregate with all of them;
-  // masses left over join a neighbour's aggregate, or start their own.
-  aggregateOf_.assign(at(blocks), -1);
+  // A row none of whose strong neighbours is taken starts an aggregate with all of them;
+  // rows left over join a neighbour's aggregate, or start their own.
+  std::vector<int>& of = level.aggregateOf;
+  of.assign(at(rows), -1);
   int count = 0;
-  for (int b = 0; b < blocks; ++b) {
-    if (aggregateOf_[at(b)] >= 0) continue;
+  for (int b = 0; b < rows; ++b) {
+    if (of[at(b)] >= 0) continue;
     const auto& nb = strong[at(b)];
-    if (std::any_of(nb.begin(), nb.end(), [&](int j) { return aggregateOf_[at(j)] >= 0; })) continue;
-    aggregateOf_[at(b)] = count;
-    for (int j : nb) aggregateOf_[at(j)] = count;
+    if (std::any_of(nb.begin(), nb.end(), [&](int j) { return of[at(j)] >= 0; })) continue;
+    of[at(b)] = count;
+    for (int j : nb) of[at(j)] = count;
     ++count;
   }
-  for (int b = 0; b < blocks; ++b) {
-    if (aggregateOf_[at(b)] >= 0) continue;
+  for (int b = 0; b < rows; ++b) {
+    if (of[at(b)] >= 0) continue;
     for (int j : strong[at(b)]) {
-      if (aggregateOf_[at(j)] >= 0) {
-        aggregateOf_[at(b)] = aggregateOf_[at(j)];
+      if (of[at(j)] >= 0) {
+        of[at(b)] = of[at(j)];
         break;
       }
     }
-    if (aggregateOf_[at(b)] < 0) aggregateOf_[at(b)] = count++;
+    if (of[at(b)] < 0) of[at(b)] = count++;
   }
-  aggregates_ = count;
+  level.aggregates = count;
+}
 
-  // P's pattern: row b reaches its own aggregate and its neighbours' (D^-1 A P0).
-  // A P's: row b reaches what P's rows of b and of its neighbours reach.
-  auto buildRows = [&](BlockRows& out, auto&& columnsOf) {
-    out.start.assign(1, 0);
-    out.col.clear();
-    std::vector<int> cols;
-    for (int b = 0; b < blocks; ++b) {
-      cols.clear();
-      columnsOf(b, cols);
-      std::sort(cols.begin(), cols.end());
-      cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
-      out.col.insert(out.col.end(), cols.begin(), cols.end());
-      out.start.push_back(static_cast<int>(out.col.size()));
+void SmoothedAggregationCG::buildProlongator(Level& level) {
+  // P_b = P0_b - omega D_b^-1 (A_F P0)_b: a strong A_bj goes to j's aggregate, a weak one and
+  // A_bb to b's own (A_F keeps the row sums of A).
+  const BlockRows& A = level.A;
+  BlockRows& P = level.P;
+  std::fill(P.value.begin(), P.value.end(), Mat3::Zero());
+  for (int b = 0; b < A.rows(); ++b) {
+    const int own = slotOf(P, b, level.aggregateOf[at(b)]);
+    P.value[at(own)] += Mat3::Identity();
+    const Mat3 scale = kProlongatorDamping * level.inverseDiagonal[at(b)];
+    for (int e = A.start[at(b)]; e < A.start[at(b) + 1]; ++e) {
+      const int j = A.col[at(e)];
+      const int slot = level.strong[at(e)] ? slotOf(P, b, level.aggregateOf[at(j)]) : own;
+      P.value[at(slot)].noalias() -= scale * A.value[at(e)];
     }
-    out.value.assign(out.col.size(), Mat3::Zero());
-  };
-  buildRows(P_, [&](int b, std::vector<int>& cols) {
-    cols.push_back(aggregateOf_[at(b)]);
-    for (const auto& nb : rows[at(b)]) cols.push_back(aggregateOf_[at(nb.first)]);
-  });
-  auto pRow = [&](int b, std::vector<int>& cols) {
-    cols.insert(cols.end(), P_.col.begin() + P_.start[at(b)], P_.col.begin() + P_.start[at(b) + 1]);
-  };
-  buildRows(AP_, [&](int b, std::vector<int>& cols) {
-    pRow(b, cols);
-    for (const auto& nb : rows[at(b)]) pRow(nb.first, cols);
-  });
-
-  // Where each product lands in A P: D_b P_b, then per pair C P_j into row i, C P_i into row j.
-  apOfDiagonal_.resize(P_.col.size());
-  for (int b = 0; b < blocks; ++b) {
-    for (int s = P_.start[at(b)]; s < P_.start[at(b) + 1]; ++s) apOfDiagonal_[at(s)] = slotOf(AP_, b, P_.col[at(s)]);
   }
-  const auto& pairRows = system.pairRows();
-  apOfPairStart_.assign(1, 0);
-  apOfPair_.clear();
-  for (const auto& [ri, rj] : pairRows) {
-    if (ri >= 0) {
-      const int i = ri / 3, j = rj / 3;
-      for (int s = P_.start[at(j)]; s < P_.start[at(j) + 1]; ++s) apOfPair_.push_back(slotOf(AP_, i, P_.col[at(s)]));
-      for (int s = P_.start[at(i)]; s < P_.start[at(i) + 1]; ++s) apOfPair_.push_back(slotOf(AP_, j, P_.col[at(s)]));
-    }
-    apOfPairStart_.push_back(static_cast<int>(apOfPair_.size()));
-  }
+}
 
-  // A_c's blocks: (a, c) for every P_ba and (A P)_bc of a row b.
-  std::map<std::pair<int, int>, int> coarseBlock;
-  coarseOf_.clear();
-  for (int b = 0; b < blocks; ++b) {
-    for (int s = P_.start[at(b)]; s < P_.start[at(b) + 1]; ++s) {
-      for (int t = AP_.start[at(b)]; t < AP_.start[at(b) + 1]; ++t) {
-        const auto inserted = coarseBlock.emplace(std::make_pair(P_.col[at(s)], AP_.col[at(t)]), static_cast<int>(coarseBlock.size()));
-        coarseOf_.push_back(inserted.first->second);
+void SmoothedAggregationCG::fillFirstLevel(const BlockSystem& system) {
+  BlockRows& A = levels_.front().A;
+  std::fill(A.value.begin(), A.value.end(), Mat3::Zero());
+  const auto& diagonal = system.diagonalBlocks();
+  for (std::size_t b = 0; b < diagonal.size(); ++b) A.value[at(levels_.front().diagonalSlot[b])] = diagonal[b];
+  const auto& coupling = system.couplingBlocks();
+  for (std::size_t k = 0; k < pairSlots_.size(); ++k) {
+    if (pairSlots_[k][0] < 0) continue;
+    A.value[at(pairSlots_[k][0])] += coupling[k];
+    A.value[at(pairSlots_[k][1])] += coupling[k];
+  }
+}
+
+void SmoothedAggregationCG::buildLayout(const BlockSystem& system) {
+  // The system's pattern: each free mass with itself and the masses its pairs join.
+  const int blocks = static_cast<int>(system.diagonalBlocks().size());
+  std::vector<std::vector<int>> neighbours(at(blocks));
+  for (const auto& [ri, rj] : system.pairRows()) {
+    if (ri < 0) continue;
+    neighbours[at(ri / 3)].push_back(rj / 3);
+    neighbours[at(rj / 3)].push_back(ri / 3);
+  }
+  levels_.clear();
+  levels_.emplace_back();
+  levels_.front().A = patternOf(blocks, [&](int b, std::vector<int>& cols) {
+    cols = neighbours[at(b)];
+    cols.push_back(b);
+  });
+  pairSlots_.clear();
+  for (const auto& [ri, rj] : system.pairRows()) {
+    pairSlots_.push_back(ri < 0 ? std::array<int, 2>{-1, -1}
+                                : std::array<int, 2>{slotOf(levels_.front().A, ri / 3, rj / 3), slotOf(levels_.front().A, rj / 3, ri / 3)});
+  }
+  levels_.front().diagonalSlot = diagonalSlots(levels_.front().A);
+  fillFirstLevel(system);
+
+  // Level by level: aggregates (from this step's values), P, A P and the next matrix.
+  for (std::size_t l = 0;; ++l) {
+    Level& level = levels_[l];
+    const BlockRows& A = level.A;
+    const int rows = A.rows();
+    invertDiagonal(A, level.diagonalSlot, level.inverseDiagonal);
+    aggregate(level);
+    level.P = patternOf(rows, [&](int b, std::vector<int>& cols) {
+      cols.push_back(level.aggregateOf[at(b)]);
+      for (int e = A.start[at(b)]; e < A.start[at(b) + 1]; ++e) {
+        if (level.strong[at(e)]) cols.push_back(level.aggregateOf[at(A.col[at(e)])]);
+      }
+    });
+    buildProlongator(level);
+    const BlockRows& P = level.P;
+    level.AP = patternOf(rows, [&](int b, std::vector<int>& cols) {
+      for (int e = A.start[at(b)]; e < A.start[at(b) + 1]; ++e) {
+        const int j = A.col[at(e)];
+        cols.insert(cols.end(), P.col.begin() + P.start[at(j)], P.col.begin() + P.start[at(j) + 1]);
+      }
+    });
+    level.apOf.clear();
+    for (int b = 0; b < rows; ++b) {
+      for (int e = A.start[at(b)]; e < A.start[at(b) + 1]; ++e) {
+        const int j = A.col[at(e)];
+        for (int s = P.start[at(j)]; s < P.start[at(j) + 1]; ++s) level.apOf.push_back(slotOf(level.AP, b, P.col[at(s)]));
       }
     }
-  }
-  coarseBlocks_.assign(coarseBlock.size(), Mat3::Zero());
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(9 * coarseBlock.size());
-  for (const auto& [ac, id] : coarseBlock) {
-    for (int d = 0; d < 3; ++d) {
-      for (int e = 0; e < 3; ++e) entries.emplace_back(3 * ac.first + d, 3 * ac.second + e, 1.0);
+    // The next matrix: (a, c) for every P_ba and (A P)_bc of a row b.
+    std::vector<std::vector<int>> coarseColumns(at(level.aggregates));
+    for (int b = 0; b < rows; ++b) {
+      for (int s = P.start[at(b)]; s < P.start[at(b) + 1]; ++s) {
+        auto& cols = coarseColumns[at(P.col[at(s)])];
+        cols.insert(cols.end(), level.AP.col.begin() + level.AP.start[at(b)], level.AP.col.begin() + level.AP.start[at(b) + 1]);
+      }
     }
-  }
-  coarseMatrix_ = Sparse(3 * aggregates_, 3 * aggregates_);
-  coarseMatrix_.setFromTriplets(entries.begin(), entries.end());
-  coarseMatrix_.makeCompressed();
-  coarseEntry_.resize(3 * coarseBlock.size());
-  for (const auto& [ac, id] : coarseBlock) {
-    for (int e = 0; e < 3; ++e) {
-      coarseEntry_[3 * at(id) + at(e)] =
-          static_cast<int>(&coarseMatrix_.coeffRef(3 * ac.first, 3 * ac.second + e) - coarseMatrix_.valuePtr());
+    BlockRows next = patternOf(level.aggregates, [&](int a, std::vector<int>& cols) { cols = coarseColumns[at(a)]; });
+    level.coarseOf.clear();
+    for (int b = 0; b < rows; ++b) {
+      for (int s = P.start[at(b)]; s < P.start[at(b) + 1]; ++s) {
+        for (int t = level.AP.start[at(b)]; t < level.AP.start[at(b) + 1]; ++t) {
+          level.coarseOf.push_back(slotOf(next, P.col[at(s)], level.AP.col[at(t)]));
+        }
+      }
     }
+    galerkin(A, P, level.AP, level.apOf, level.coarseOf, next);
+    // Small enough to factor, or no longer coarsening (a system without couplings): the last.
+    const bool last = next.rows() <= kDirectBlocks || 2 * next.rows() > rows;
+    if (last) {
+      coarsest_ = std::move(next);
+      break;
+    }
+    levels_.emplace_back();
+    levels_.back().A = std::move(next);
+    levels_.back().diagonalSlot = diagonalSlots(levels_.back().A);
   }
-  coarse_.analyzePattern(coarseMatrix_);
   ++layoutBuilds_;
 }
 
-void SmoothedAggregationCG::buildProlongator(const BlockSystem& system) {
-  // P_b = P0_b - omega D_b^-1 (A P0)_b: (1 - omega) I in b's own aggregate from A_bb, and
-  // -omega D_b^-1 A_bj in the aggregate of each neighbour j.
-  const int blocks = static_cast<int>(system.diagonalBlocks().size());
-  std::fill(P_.value.begin(), P_.value.end(), Mat3::Zero());
-  for (int b = 0; b < blocks; ++b) P_.value[at(slotOf(P_, b, aggregateOf_[at(b)]))] += (1.0 - kProlongatorDamping) * Mat3::Identity();
-  const auto& pairRows = system.pairRows();
-  const auto& coupling = system.couplingBlocks();
-  for (std::size_t k = 0; k < pairRows.size(); ++k) {
-    const auto [ri, rj] = pairRows[k];
-    if (ri < 0) continue;
-    const int i = ri / 3, j = rj / 3;
-    P_.value[at(slotOf(P_, i, aggregateOf_[at(j)]))] -= kProlongatorDamping * inverseDiagonal_[at(i)] * coupling[k];
-    P_.value[at(slotOf(P_, j, aggregateOf_[at(i)]))] -= kProlongatorDamping * inverseDiagonal_[at(j)] * coupling[k];
+void SmoothedAggregationCG::buildCoarseMatrices() {
+  // Level by level: this step's D^-1, P when asked for, the next matrix; the last one factored.
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    Level& level = levels_[l];
+    if (l > 0) invertDiagonal(level.A, level.diagonalSlot, level.inverseDiagonal);
+    if (rebuild_ && l > 0) buildProlongator(level);
+    BlockRows& next = l + 1 < levels_.size() ? levels_[l + 1].A : coarsest_;
+    galerkin(level.A, level.P, level.AP, level.apOf, level.coarseOf, next);
   }
-  ++prolongatorBuilds_;
-}
-
-void SmoothedAggregationCG::buildCoarseMatrix(const BlockSystem& system) {
-  // A P, block by block through the layout's indices.
-  const int blocks = static_cast<int>(system.diagonalBlocks().size());
-  const auto& diagonal = system.diagonalBlocks();
-  std::fill(AP_.value.begin(), AP_.value.end(), Mat3::Zero());
-  for (int b = 0; b < blocks; ++b) {
-    for (int s = P_.start[at(b)]; s < P_.start[at(b) + 1]; ++s) AP_.value[at(apOfDiagonal_[at(s)])].noalias() += diagonal[at(b)] * P_.value[at(s)];
-  }
-  const auto& pairRows = system.pairRows();
-  const auto& coupling = system.couplingBlocks();
-  for (std::size_t k = 0; k < pairRows.size(); ++k) {
-    const auto [ri, rj] = pairRows[k];
-    if (ri < 0) continue;
-    const int i = ri / 3, j = rj / 3;
-    const Mat3& c = coupling[k];
-    const int* slot = apOfPair_.data() + apOfPairStart_[k];
-    for (int s = P_.start[at(j)]; s < P_.start[at(j) + 1]; ++s) AP_.value[at(*slot++)].noalias() += c * P_.value[at(s)];
-    for (int s = P_.start[at(i)]; s < P_.start[at(i) + 1]; ++s) AP_.value[at(*slot++)].noalias() += c * P_.value[at(s)];
-  }
-
-  // A_c = P^T (A P), then into the factorised matrix's values.
-  std::fill(coarseBlocks_.begin(), coarseBlocks_.end(), Mat3::Zero());
-  const int* target = coarseOf_.data();
-  for (int b = 0; b < blocks; ++b) {
-    for (int s = P_.start[at(b)]; s < P_.start[at(b) + 1]; ++s) {
-      const Mat3 pT = P_.value[at(s)].transpose();
-      for (int t = AP_.start[at(b)]; t < AP_.start[at(b) + 1]; ++t) coarseBlocks_[at(*target++)].noalias() += pT * AP_.value[at(t)];
+  // The last matrix in full: a dense Cholesky of at most 3 kDirectBlocks rows (a level that
+  // stopped coarsening is larger: it is solved by its diagonal blocks instead).
+  const int n = 3 * coarsest_.rows();
+  if (coarsest_.rows() > kDirectBlocks) return;
+  coarsestDense_.setZero(n, n);
+  for (int a = 0; a < coarsest_.rows(); ++a) {
+    for (int e = coarsest_.start[at(a)]; e < coarsest_.start[at(a) + 1]; ++e) {
+      coarsestDense_.block<3, 3>(3 * a, 3 * coarsest_.col[at(e)]) = coarsest_.value[at(e)];
     }
   }
-  double* values = coarseMatrix_.valuePtr();
-  for (std::size_t id = 0; id < coarseBlocks_.size(); ++id) {
-    for (int e = 0; e < 3; ++e) {
-      double* column = values + coarseEntry_[3 * id + at(e)];
-      for (int d = 0; d < 3; ++d) column[d] = coarseBlocks_[id](d, e);
-    }
+  coarsestFactor_.compute(coarsestDense_);
+  if (coarsestFactor_.info() != Eigen::Success) {
+    throw std::runtime_error("SmoothedAggregationCG: the coarsest matrix P^T A P is not positive definite");
   }
-  coarse_.factorize(coarseMatrix_);
-  if (coarse_.info() != Eigen::Success) throw std::runtime_error("SmoothedAggregationCG: the coarse matrix P^T A P is not positive definite");
 }
 
-void SmoothedAggregationCG::vCycle(const BlockSystem& system, const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+void SmoothedAggregationCG::vCycle(std::size_t l, const BlockSystem& system, const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  if (l == levels_.size()) {
+    if (coarsest_.rows() <= kDirectBlocks) {
+      z = coarsestFactor_.solve(r);
+    } else {
+      z.resize(r.size());
+      for (int a = 0; a < coarsest_.rows(); ++a) {
+        z.segment<3>(3 * a) = coarsest_.value[at(slotOf(coarsest_, a, a))].ldlt().solve(Vec3(r.segment<3>(3 * a)));
+      }
+    }
+    return;
+  }
   // Sweep, coarse correction of what is left, sweep again: the same on the way down and up,
   // so the preconditioner is symmetric. The first sweep starts from z = 0: z = omega D^-1 r.
-  const int blocks = static_cast<int>(r.size() / 3);
+  Level& level = levels_[l];
+  const BlockRows& P = level.P;
+  auto multiply = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+    if (l == 0) {
+      system.multiply(x, y);  // the system's own product: each pair's block read once
+    } else {
+      level.A.multiply(x, y);
+    }
+  };
+  const int rows = static_cast<int>(r.size() / 3);
   z.resize(r.size());
-  for (int b = 0; b < blocks; ++b) z.segment<3>(3 * b) = kSmootherDamping * (inverseDiagonal_[at(b)] * r.segment<3>(3 * b));
-  system.multiply(z, t_);
-  t_ = r - t_;
-  // rc = P^T t and z += P xc, block by block.
-  rc_.setZero(3 * aggregates_);
-  for (int b = 0; b < blocks; ++b) {
-    const Vec3 tb = t_.segment<3>(3 * b);
-    for (int s = P_.start[at(b)]; s < P_.start[at(b) + 1]; ++s) rc_.segment<3>(3 * P_.col[at(s)]).noalias() += P_.value[at(s)].transpose() * tb;
+  for (int b = 0; b < rows; ++b) z.segment<3>(3 * b) = kSmootherDamping * (level.inverseDiagonal[at(b)] * r.segment<3>(3 * b));
+  multiply(z, level.t);
+  level.t = r - level.t;
+  // rc = P^T t, the next level's correction xc, z += P xc.
+  level.rc.setZero(3 * level.aggregates);
+  for (int b = 0; b < rows; ++b) {
+    const Vec3 tb = level.t.segment<3>(3 * b);
+    for (int s = P.start[at(b)]; s < P.start[at(b) + 1]; ++s) level.rc.segment<3>(3 * P.col[at(s)]).noalias() += P.value[at(s)].transpose() * tb;
   }
-  xc_ = coarse_.solve(rc_);
-  for (int b = 0; b < blocks; ++b) {
+  vCycle(l + 1, system, level.rc, level.xc);
+  for (int b = 0; b < rows; ++b) {
     Vec3 sum = Vec3::Zero();
-    for (int s = P_.start[at(b)]; s < P_.start[at(b) + 1]; ++s) sum.noalias() += P_.value[at(s)] * xc_.segment<3>(3 * P_.col[at(s)]);
+    for (int s = P.start[at(b)]; s < P.start[at(b) + 1]; ++s) sum.noalias() += P.value[at(s)] * level.xc.segment<3>(3 * P.col[at(s)]);
     z.segment<3>(3 * b) += sum;
   }
-  system.multiply(z, t_);
-  t_ = r - t_;
-  for (int b = 0; b < blocks; ++b) z.segment<3>(3 * b) += kSmootherDamping * (inverseDiagonal_[at(b)] * t_.segment<3>(3 * b));
+  multiply(z, level.t);
+  level.t = r - level.t;
+  for (int b = 0; b < rows; ++b) z.segment<3>(3 * b) += kSmootherDamping * (level.inverseDiagonal[at(b)] * level.t.segment<3>(3 * b));
 }
 
 int SmoothedAggregationCG::solve(const BlockSystem& system, Eigen::VectorXd& x) {
   if (system.size() == 0 || system.rhs().squaredNorm() == 0.0) return preconditionedCG(system, x, tolerance, {}, vectors_);
 
-  // This step's diagonal blocks, for the smoothing sweeps and P.
-  const std::vector<Mat3>& diagonal = system.diagonalBlocks();
-  inverseDiagonal_.resize(diagonal.size());
-  for (std::size_t b = 0; b < diagonal.size(); ++b) inverseDiagonal_[b] = diagonal[b].inverse();
-
-  // A new layout: new aggregates and indices. New P values when asked for. A_c every step.
+  // A new layout: new levels, aggregates, indices and P. Otherwise this step's values in the
+  // first level, new P when asked for, every coarser matrix from them.
   const bool newLayout = system.layoutVersion() != layoutVersion_;
   if (newLayout) {
     buildLayout(system);
     layoutVersion_ = system.layoutVersion();
+    rebuild_ = false;
+  } else {
+    fillFirstLevel(system);
+    invertDiagonal(levels_.front().A, levels_.front().diagonalSlot, levels_.front().inverseDiagonal);
+    if (rebuild_) buildProlongator(levels_.front());
   }
   const bool built = newLayout || rebuild_;
-  if (built) buildProlongator(system);
-  buildCoarseMatrix(system);
+  if (built) ++prolongatorBuilds_;
+  buildCoarseMatrices();
+  rebuild_ = false;
 
   const int iterations = preconditionedCG(
-      system, x, tolerance, [this, &system](const Eigen::VectorXd& r, Eigen::VectorXd& z) { vCycle(system, r, z); },
+      system, x, tolerance, [this, &system](const Eigen::VectorXd& r, Eigen::VectorXd& z) { vCycle(0, system, r, z); },
       vectors_);
 
-  // P ages with the matrix (A_c does not: it is rebuilt from each step's A): rebuild it when
-  // CG needs clearly more iterations than with a fresh one.
+  // P ages with the matrix (the coarse matrices do not: they are rebuilt from each step's
+  // A): rebuild it when CG needs clearly more iterations than with a fresh one.
   if (built) {
     iterationsAfterBuild_ = iterations;
-    rebuild_ = false;
   } else {
     rebuild_ = iterations > kRebuildGrowth * iterationsAfterBuild_ + 1;
   }
