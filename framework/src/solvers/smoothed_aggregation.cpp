@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 #include <utility>
 
@@ -12,6 +13,7 @@ namespace {
 constexpr double kProlongatorDamping = 2.0 / 3.0;  // omega of P = (I - omega D^-1 A_F) P0
 constexpr double kSmootherDamping = 2.0 / 3.0;     // omega of the block-Jacobi sweeps
 constexpr double kStrongCoupling = 0.05;           // |A_ij| / max_j |A_ij| of a strong neighbour
+const bool kFilterWeakCouplings = std::getenv("SA_NOFILTER") == nullptr;
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
@@ -162,27 +164,52 @@ void SmoothedAggregationCG::fillFirstLevel(const BlockSystem& system) {
 }
 
 void SmoothedAggregationCG::buildLayout(const BlockSystem& system) {
-  // The system's pattern: each free mass with itself and the masses its pairs join.
+  // The first level's pattern: each free mass with itself and the masses the kept pairs
+  // join; a pair not kept adds its block to both masses' diagonal blocks (A_F).
   const int blocks = static_cast<int>(system.diagonalBlocks().size());
-  std::vector<std::vector<int>> neighbours(at(blocks));
-  for (const auto& [ri, rj] : system.pairRows()) {
-    if (ri < 0) continue;
-    neighbours[at(ri / 3)].push_back(rj / 3);
-    neighbours[at(rj / 3)].push_back(ri / 3);
+  const auto& pairRows = system.pairRows();
+  auto firstLevel = [&](const std::vector<char>& keep) {
+    std::vector<std::vector<int>> neighbours(at(blocks));
+    for (std::size_t k = 0; k < pairRows.size(); ++k) {
+      const auto [ri, rj] = pairRows[k];
+      if (ri < 0 || !keep[k]) continue;
+      neighbours[at(ri / 3)].push_back(rj / 3);
+      neighbours[at(rj / 3)].push_back(ri / 3);
+    }
+    levels_.clear();
+    levels_.emplace_back();
+    BlockRows& A = levels_.front().A;
+    A = patternOf(blocks, [&](int b, std::vector<int>& cols) {
+      cols = neighbours[at(b)];
+      cols.push_back(b);
+    });
+    pairSlots_.clear();
+    for (std::size_t k = 0; k < pairRows.size(); ++k) {
+      const int i = pairRows[k][0] / 3, j = pairRows[k][1] / 3;
+      if (pairRows[k][0] < 0) {
+        pairSlots_.push_back({-1, -1});
+      } else if (keep[k]) {
+        pairSlots_.push_back({slotOf(A, i, j), slotOf(A, j, i)});
+      } else {
+        pairSlots_.push_back({slotOf(A, i, i), slotOf(A, j, j)});
+      }
+    }
+    levels_.front().diagonalSlot = diagonalSlots(A);
+    fillFirstLevel(system);
+  };
+  // Every pair first, to find the weak ones; then only the pairs strong for one of their ends.
+  std::vector<char> keep(pairRows.size(), 1);
+  firstLevel(keep);
+  if (kFilterWeakCouplings) {
+    aggregate(levels_.front());
+    const BlockRows& A = levels_.front().A;
+    for (std::size_t k = 0; k < pairRows.size(); ++k) {
+      if (pairRows[k][0] < 0) continue;
+      const int i = pairRows[k][0] / 3, j = pairRows[k][1] / 3;
+      keep[k] = levels_.front().strong[at(slotOf(A, i, j))] || levels_.front().strong[at(slotOf(A, j, i))];
+    }
+    firstLevel(keep);
   }
-  levels_.clear();
-  levels_.emplace_back();
-  levels_.front().A = patternOf(blocks, [&](int b, std::vector<int>& cols) {
-    cols = neighbours[at(b)];
-    cols.push_back(b);
-  });
-  pairSlots_.clear();
-  for (const auto& [ri, rj] : system.pairRows()) {
-    pairSlots_.push_back(ri < 0 ? std::array<int, 2>{-1, -1}
-                                : std::array<int, 2>{slotOf(levels_.front().A, ri / 3, rj / 3), slotOf(levels_.front().A, rj / 3, ri / 3)});
-  }
-  levels_.front().diagonalSlot = diagonalSlots(levels_.front().A);
-  fillFirstLevel(system);
 
   // Level by level: aggregates (from this step's values), P, A P and the next matrix.
   for (std::size_t l = 0;; ++l) {
@@ -285,7 +312,7 @@ void SmoothedAggregationCG::vCycle(std::size_t l, const BlockSystem& system, con
   Level& level = levels_[l];
   const BlockRows& P = level.P;
   auto multiply = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-    if (l == 0) {
+    if (l == 0 && !kFilterWeakCouplings) {
       system.multiply(x, y);  // the system's own product: each pair's block read once
     } else {
       level.A.multiply(x, y);
