@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <stdexcept>
 #include <utility>
 
@@ -13,7 +12,7 @@ namespace {
 constexpr double kProlongatorDamping = 2.0 / 3.0;  // omega of P = (I - omega D^-1 A_F) P0
 constexpr double kSmootherDamping = 2.0 / 3.0;     // omega of the block-Jacobi sweeps
 constexpr double kStrongCoupling = 0.05;           // |A_ij| / max_j |A_ij| of a strong neighbour
-const bool kFilterWeakCouplings = std::getenv("SA_NOFILTER") == nullptr;
+
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
@@ -78,11 +77,11 @@ void galerkin(const BlockRows& A, const BlockRows& P, BlockRows& AP, const std::
 }
 }  // namespace
 
-void SmoothedAggregationCG::BlockRows::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+void SmoothedAggregationCG::BlockRows::residual(const Eigen::VectorXd& r, const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   y.resize(3 * rows());
   for (int b = 0; b < rows(); ++b) {
-    Vec3 sum = Vec3::Zero();
-    for (int e = start[at(b)]; e < start[at(b) + 1]; ++e) sum.noalias() += value[at(e)] * x.segment<3>(3 * col[at(e)]);
+    Vec3 sum = r.segment<3>(3 * b);
+    for (int e = start[at(b)]; e < start[at(b) + 1]; ++e) sum.noalias() -= value[at(e)] * x.segment<3>(3 * col[at(e)]);
     y.segment<3>(3 * b) = sum;
   }
 }
@@ -200,7 +199,7 @@ void SmoothedAggregationCG::buildLayout(const BlockSystem& system) {
   // Every pair first, to find the weak ones; then only the pairs strong for one of their ends.
   std::vector<char> keep(pairRows.size(), 1);
   firstLevel(keep);
-  if (kFilterWeakCouplings) {
+  {
     aggregate(levels_.front());
     const BlockRows& A = levels_.front().A;
     for (std::size_t k = 0; k < pairRows.size(); ++k) {
@@ -311,18 +310,10 @@ void SmoothedAggregationCG::vCycle(std::size_t l, const BlockSystem& system, con
   // so the preconditioner is symmetric. The first sweep starts from z = 0: z = omega D^-1 r.
   Level& level = levels_[l];
   const BlockRows& P = level.P;
-  auto multiply = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-    if (l == 0 && !kFilterWeakCouplings) {
-      system.multiply(x, y);  // the system's own product: each pair's block read once
-    } else {
-      level.A.multiply(x, y);
-    }
-  };
   const int rows = static_cast<int>(r.size() / 3);
   z.resize(r.size());
   for (int b = 0; b < rows; ++b) z.segment<3>(3 * b) = kSmootherDamping * (level.inverseDiagonal[at(b)] * r.segment<3>(3 * b));
-  multiply(z, level.t);
-  level.t = r - level.t;
+  level.A.residual(r, z, level.t);
   // rc = P^T t, the next level's correction xc, z += P xc.
   level.rc.setZero(3 * level.aggregates);
   for (int b = 0; b < rows; ++b) {
@@ -335,8 +326,7 @@ void SmoothedAggregationCG::vCycle(std::size_t l, const BlockSystem& system, con
     for (int s = P.start[at(b)]; s < P.start[at(b) + 1]; ++s) sum.noalias() += P.value[at(s)] * level.xc.segment<3>(3 * P.col[at(s)]);
     z.segment<3>(3 * b) += sum;
   }
-  multiply(z, level.t);
-  level.t = r - level.t;
+  level.A.residual(r, z, level.t);
   for (int b = 0; b < rows; ++b) z.segment<3>(3 * b) += kSmootherDamping * (level.inverseDiagonal[at(b)] * level.t.segment<3>(3 * b));
 }
 

@@ -52,7 +52,8 @@ class SmoothedAggregationCG {
     std::vector<int> start{0}, col;
     std::vector<Mat3> value;
     int rows() const { return static_cast<int>(start.size()) - 1; }
-    void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+    // y = r - A x (one pass: the smoothing sweeps' residual)
+    void residual(const Eigen::VectorXd& r, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   };
 
  private:
