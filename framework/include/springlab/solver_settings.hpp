@@ -12,10 +12,10 @@ struct SolverSettings {
   double tolerance = 1e-6;
   // implicit_euler: CG's preconditioner: "block_jacobi" (each mass's 3x3 block),
   // "smoothed_aggregation" (an AMG V-cycle, its hierarchy built once per layout, its coarse
-  // matrices every step: about 17-30 iterations at r = 32-128 on the fabric against 124-500),
-  // or "auto" (the default): block Jacobi until a step needs more than 40 iterations, then
-  // smoothed aggregation (heavy cloth stays with block Jacobi's few iterations; light fabric
-  // switches after its first step).
+  // matrices every step: about 17-37 iterations at r = 32-128 on the swinging fabric against
+  // 123-540), or "auto" (the default): block Jacobi until a step needs more than 150
+  // iterations, then smoothed aggregation (heavy cloth and the fabric up to r = 32 stay with
+  // block Jacobi, cheaper there over a whole run; the fabric from r = 64 on switches).
   std::string preconditioner = "auto";
   // implicit_euler_blocks: block-Jacobi sweeps of the implicit system per step, at most. One
   // sweep (the cloth thesis' method) solves each mass against its neighbours' old velocities.
