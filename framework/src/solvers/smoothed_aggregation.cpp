@@ -278,10 +278,12 @@ void SmoothedAggregationCG::buildCoarseMatrices() {
     BlockRows& next = l + 1 < levels_.size() ? levels_[l + 1].A : coarsest_;
     galerkin(level.A, level.P, level.AP, level.apOf, level.coarseOf, next);
   }
-  // The last matrix in full: a dense Cholesky of at most 3 kDirectBlocks rows (a level that
-  // stopped coarsening is larger: it is solved by its diagonal blocks instead).
-  const int n = 3 * coarsest_.rows();
+  // The last matrix in full: a dense Cholesky of at most 3 kDirectBlocks rows. A level that
+  // stopped coarsening is larger, and a matrix that is not positive definite (an A that is
+  // not) cannot be factored: those are solved by their diagonal blocks instead.
+  coarsestFactored_ = false;
   if (coarsest_.rows() > kDirectBlocks) return;
+  const int n = 3 * coarsest_.rows();
   coarsestDense_.setZero(n, n);
   for (int a = 0; a < coarsest_.rows(); ++a) {
     for (int e = coarsest_.start[at(a)]; e < coarsest_.start[at(a) + 1]; ++e) {
@@ -289,14 +291,12 @@ void SmoothedAggregationCG::buildCoarseMatrices() {
     }
   }
   coarsestFactor_.compute(coarsestDense_);
-  if (coarsestFactor_.info() != Eigen::Success) {
-    throw std::runtime_error("SmoothedAggregationCG: the coarsest matrix P^T A P is not positive definite");
-  }
+  coarsestFactored_ = coarsestFactor_.info() == Eigen::Success;
 }
 
 void SmoothedAggregationCG::vCycle(std::size_t l, const BlockSystem& system, const Eigen::VectorXd& r, Eigen::VectorXd& z) {
   if (l == levels_.size()) {
-    if (coarsest_.rows() <= kDirectBlocks) {
+    if (coarsestFactored_) {
       z = coarsestFactor_.solve(r);
     } else {
       z.resize(r.size());

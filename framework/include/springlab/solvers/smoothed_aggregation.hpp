@@ -81,6 +81,7 @@ class SmoothedAggregationCG {
   BlockRows coarsest_;                         // the last level's matrix, factored densely
   Eigen::MatrixXd coarsestDense_;
   Eigen::LLT<Eigen::MatrixXd> coarsestFactor_;
+  bool coarsestFactored_ = false;              // else the last level is solved by its diagonal blocks
   int layoutVersion_ = -1;                     // of the system the layout was built for
   int prolongatorBuilds_ = 0;
   int layoutBuilds_ = 0;
