@@ -12,7 +12,7 @@ struct SolverSettings {
   double tolerance = 1e-6;
   // implicit_euler: CG's preconditioner: "block_jacobi" (each mass's 3x3 block),
   // "smoothed_aggregation" (an AMG V-cycle, its hierarchy built once per layout, its coarse
-  // matrices every step: about 17-37 iterations at r = 32-128 on the swinging fabric against
+  // matrices every step: about 14-22 iterations at r = 32-128 on the swinging fabric against
   // 123-540), or "auto" (the default): block Jacobi until a step needs more than 150
   // iterations, then smoothed aggregation (heavy cloth and the fabric up to r = 32 stay with
   // block Jacobi, cheaper there over a whole run; the fabric from r = 64 on switches).
