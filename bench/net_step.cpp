@@ -123,7 +123,7 @@ namespace springlab::bench {
 namespace {
 
 //   NetImplicitFabric/r/preconditioner: implicit Euler on the fabric at dt = 1/120 s, CG to
-//   1e-6 with block Jacobi (0) or two-level smoothed aggregation (1).
+//   1e-6 with block Jacobi (0) or smoothed aggregation (1).
 void NetImplicitFabric(benchmark::State& bench) {
   const int r = static_cast<int>(bench.range(0));
   useThreads(1);

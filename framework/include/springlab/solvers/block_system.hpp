@@ -65,6 +65,9 @@ class BlockSystem {
   // std::invalid_argument when a size is not the layout's.
   const std::vector<Mat3>& diagonalBlocks() const { return diagonal_; }
   const std::vector<Mat3>& couplingBlocks() const { return coupling_; }
+  // [pairs] the first rows of pair k's two masses, {-1, -1} when the pair is ignored (a solver
+  // derives its layout from them: smoothed aggregation's neighbours).
+  const std::vector<std::array<int, 2>>& pairRows() const { return pairRows_; }
   void setValues(const std::vector<Mat3>& diagonal, const std::vector<Mat3>& coupling, const Eigen::VectorXd& rhs);
 
  private:
