@@ -170,6 +170,16 @@ def main():
                   for n in [t["name"]] if f"{lab.name}.{n}" in cases]
         if hidden:
             problems.append(f"{lab.dir}: hidden tests in the release: {', '.join(hidden)}")
+    # A student's `check` (tools/grade.py on the lab's grading program) runs with the release's
+    # own grader modules and scores the skeleton 0.
+    for lab in labs[:1]:
+        program = build / "tests" / f"{lab.name}_grading_student"
+        run = subprocess.run([sys.executable, str(tree / "tools" / "grade.py"), "--binary", str(program),
+                              "--manifest", str(tree / "tests" / lab.dir / "exercises.json"), "--quiet", "--seed", "1"],
+                             capture_output=True, text=True, cwd=tree)
+        if run.returncode != 0 or not re.search(r"\b0 / \d+ points", run.stdout):
+            problems.append(f"`check {lab.name}` in the release does not score the skeleton 0 (exit {run.returncode}):\n"
+                            + (run.stdout + run.stderr)[-2000:])
     for problem in problems:
         print(f"PROBLEM: {problem}", file=sys.stderr)
     if not problems:
