@@ -1,4 +1,5 @@
-// springlab-student / springlab-reference: run a scene headless (sim) or in the viewer (view).
+// springlab-<tree> and springlab-<tree>-<lab> (framework/app/CMakeLists.txt): run a scene headless
+// (sim) or in the viewer (view).
 // Exit codes: 0 success, 1 usage, 2 bad scene or option, 3 exercise not implemented,
 // 4 the simulation blew up, 5 output could not be written.
 #include <CLI/CLI.hpp>
