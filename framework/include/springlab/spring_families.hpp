@@ -23,8 +23,9 @@
 // instruction there, a portable binary everywhere. AVX2 without FMA: the same operations in the
 // same order, so both give bitwise the same results. Other compilers build the baseline only.
 // (Explicit functions, not target_clones: GCC 12's clones lose `restrict` on their parameters,
-// and with it the vectorisation.)
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+// and with it the vectorisation.) Not on Windows: MinGW-w64's GCC does not align the stack to
+// 32 bytes for AVX spills there (GCC bug 54412), so an AVX2 function can fault.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(_WIN32)
 #define SPRINGLAB_AVX2_VARIANT 1
 #define SPRINGLAB_TARGET_AVX2 __attribute__((target("avx2")))
 #else
