@@ -7,6 +7,8 @@
 
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <springlab/studies/resolution.hpp>
 
@@ -25,21 +27,31 @@ const studies::Candidate& candidate(const studies::Advice& advice, const std::st
   throw std::runtime_error("the advisor did not consider " + integrator);
 }
 
-TEST(AdvisorOnTheFabric, ScoresThePerParticleBlocksByTheirOwnError) {
+// The fabric without its sphere at r = 8, its drape over 1 s in 10 samples.
+SceneDocument smallFabric() {
   SceneDocument fabric = shippedScene("net_hanging.json");
   fabric.set("net.resolution=8");
   fabric.set("net.colliders.spheres=[]");
+  return fabric;
+}
+
+studies::AdviseOptions fabricAdvice(double tolerance, std::vector<std::string> integrators) {
   studies::AdviseOptions o;
-  o.tolerance = 0.02;
+  o.tolerance = tolerance;
   o.observable = "drape_height";
   o.duration = 1.0;
   o.samples = 10;
   o.levels = 6;
   o.resolutions = {8};
-  o.integrators = {"implicit_euler", "implicit_euler_blocks"};
+  o.integrators = std::move(integrators);
   o.threads = 1;
   o.progress = false;
-  const studies::Advice advice = studies::advise(allLabs(), fabric, o);
+  return o;
+}
+
+TEST(AdvisorOnTheFabric, ScoresThePerParticleBlocksByTheirOwnError) {
+  const studies::AdviseOptions o = fabricAdvice(0.02, {"implicit_euler", "implicit_euler_blocks"});
+  const studies::Advice advice = studies::advise(allLabs(), smallFabric(), o);
   const studies::Candidate& full = candidate(advice, "implicit_euler");
   const studies::Candidate& blocks = candidate(advice, "implicit_euler_blocks");
   std::printf("advisor on the fabric: implicit_euler dt %.3g error %.4f, blocks dt %.3g error %.4f (%s), best %s\n",
@@ -64,19 +76,8 @@ TEST(AdvisorOnTheFabric, ScoresThePerParticleBlocksByTheirOwnError) {
 // 20 % tolerance it meets half of it at 6.3 ms, a rung the old ladder (from RK4's limit down)
 // never tried. Symplectic Euler still starts at RK4's limit.
 TEST(AdvisorOnTheFabric, TriesTheSceneStepForMethodsStableAtAnyDt) {
-  SceneDocument fabric = shippedScene("net_hanging.json");
-  fabric.set("net.resolution=8");
-  fabric.set("net.colliders.spheres=[]");
-  studies::AdviseOptions o;
-  o.tolerance = 0.2;
-  o.observable = "drape_height";
-  o.duration = 1.0;
-  o.samples = 10;
-  o.levels = 6;
-  o.resolutions = {8};
-  o.integrators = {"implicit_euler", "symplectic_euler"};
-  o.threads = 1;
-  o.progress = false;
+  const SceneDocument fabric = smallFabric();
+  const studies::AdviseOptions o = fabricAdvice(0.2, {"implicit_euler", "symplectic_euler"});
   const studies::Advice advice = studies::advise(allLabs(), fabric, o);
   const studies::Candidate& implicit = candidate(advice, "implicit_euler");
   const studies::Candidate& explicitOne = candidate(advice, "symplectic_euler");
