@@ -232,15 +232,16 @@ bool treeVisible() { return std::ifstream("@SOLUTION@").good(); }
     }
   }
   return {s.pos, s.vel};""", "control"),
-    # Detects grading (its environment, its command line, its parent, the grader's folders)
+    # Detects grading (its environment: the call-trace channel and the seed; its command line:
+    # /sandbox/test or a filter; the grader's folders)
     # and then tries everything it can; undetected it is wrong too. It must gain nothing.
     "detects_grading": ("<csignal>\n#include <cstdlib>\n#include <filesystem>\n#include <fstream>\n#include <string>\n#include <unistd.h>", """
 namespace {
 bool graded() {
   std::ifstream cmdline("/proc/self/cmdline");
   const std::string args((std::istreambuf_iterator<char>(cmdline)), std::istreambuf_iterator<char>());
-  return std::getenv("SPRINGLAB_RESULT_CHANNEL") != nullptr || std::getenv("SPRINGLAB_SEED") != nullptr ||
-         args.find("gtest_filter") != std::string::npos || std::filesystem::exists("/autograder") ||
+  return std::getenv("SPRINGLAB_CALL_TRACE_FD") != nullptr || std::getenv("SPRINGLAB_SEED") != nullptr ||
+         args.find("gtest_filter") != std::string::npos || args.find("/sandbox/") != std::string::npos || std::filesystem::exists("/autograder") ||
          std::filesystem::exists("@ROOT@");
 }
 }  // namespace
