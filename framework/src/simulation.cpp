@@ -144,6 +144,7 @@ void Simulation::editModel(const std::function<void(Simulation&)>& edit) {
   if (state.pos.size() != masses.size() || state.vel.size() != masses.size()) {
     throw std::logic_error("Simulation::editModel: the edit changed the number of masses but not the state");
   }
+  onModelEdited();
   // The integrator's history (Verlet's previous positions) belongs to the old model, and
   // the edited model may hold more energy than the old one: neither is a blow-up.
   integrator_->reset();

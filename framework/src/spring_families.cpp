@@ -1,6 +1,8 @@
 #include "springlab/spring_families.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <utility>
@@ -11,7 +13,7 @@
 namespace springlab {
 
 SpringFamilies::SpringFamilies(const std::vector<Spring>& springs, int masses)
-    : masses_(masses), springCount_(springs.size()) {
+    : masses_(masses), springCount_(springs.size()), records_(springs.data()) {
   // Offsets shared by enough springs to pay for a buffer of one force per mass.
   std::map<int, int> springsPerOffset;
   for (const Spring& s : springs) {
@@ -75,10 +77,114 @@ SpringFamilies::SpringFamilies(const std::vector<Spring>& springs, int masses)
   std::stable_sort(blocked.begin(), blocked.end(),
                    [](const Run& a, const Run& b) { return a.first / kBlockMasses < b.first / kBlockMasses; });
   runs_ = std::move(blocked);
+  // Where each spring of order() must start and end, for refresh() and check().
+  firstMass_.resize(order_.size());
+  secondMass_.resize(order_.size());
+  for (const Run& run : runs_) {
+    for (int t = 0; t < run.count; ++t) {
+      firstMass_[static_cast<std::size_t>(run.spring + t)] = run.first + t;
+      secondMass_[static_cast<std::size_t>(run.spring + t)] = run.first + t + offset(run.family);
+    }
+  }
+  refresh(springs);
   // Zeros around each buffer: gather() reads forces(family)[i - d] for every mass i.
   const std::size_t length = static_cast<std::size_t>(std::max(masses, 0) + 2 * pad_);
   buffers_.assign(offsets_.size(), std::vector<Vec3>(length, Vec3::Zero()));
 }
+
+bool SpringFamilies::refresh(const std::vector<Spring>& springs) {
+  if (springs.size() != springCount_) return false;
+  k_.resize(order_.size());
+  restLength_.resize(order_.size());
+  kd_.resize(order_.size());
+  for (std::size_t at = 0; at < order_.size(); ++at) {
+    const Spring& sp = springs[static_cast<std::size_t>(order_[at])];
+    if (sp.mass1 != firstMass_[at] || sp.mass2 != secondMass_[at]) return false;
+    k_[at] = sp.springConstant;
+    restLength_[at] = sp.springLength;
+    kd_[at] = sp.frictionConstant;
+  }
+  records_ = springs.data();
+  checked_ = 0;
+  return true;
+}
+
+int SpringFamilies::check(const std::vector<Spring>& springs) {
+  if (order_.empty()) return -1;
+  const std::size_t slice = (order_.size() + kCheckPasses - 1) / kCheckPasses;
+  const std::size_t first = checked_, last = std::min(order_.size(), first + slice);
+  checked_ = last == order_.size() ? 0 : last;
+  return mismatch(springs, first, last);
+}
+
+int SpringFamilies::mismatch(const std::vector<Spring>& springs, std::size_t first, std::size_t last) const {
+  // Bits, not values: a NaN k copied is the same NaN, and 0.0 and -0.0 are different edits.
+  const auto same = [](double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); };
+  for (std::size_t at = first; at < last; ++at) {
+    const int k = order_[at];
+    if (static_cast<std::size_t>(k) >= springs.size()) return k;
+    const Spring& sp = springs[static_cast<std::size_t>(k)];
+    if (sp.mass1 != firstMass_[at] || sp.mass2 != secondMass_[at] || !same(sp.springConstant, k_[at]) ||
+        !same(sp.springLength, restLength_[at]) || !same(sp.frictionConstant, kd_[at])) {
+      return k;
+    }
+  }
+  return -1;
+}
+
+namespace {
+
+// x, y and z of n packed Vec3s into three rows (restrict rows: GCC then vectorises the
+// stride-3 reads; one loop writing six rows through one pointer it did not).
+[[gnu::always_inline]] inline void toRows(const double* __restrict p, double* __restrict x, double* __restrict y,
+                                          double* __restrict z, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = p[3 * i];
+    y[i] = p[3 * i + 1];
+    z[i] = p[3 * i + 2];
+  }
+}
+
+void toRowsPortable(const double* __restrict p, double* __restrict x, double* __restrict y, double* __restrict z,
+                    std::size_t n) {
+  toRows(p, x, y, z, n);
+}
+
+#if SPRINGLAB_AVX2_VARIANT
+SPRINGLAB_TARGET_AVX2 void toRowsAvx2(const double* __restrict p, double* __restrict x, double* __restrict y,
+                                      double* __restrict z, std::size_t n) {
+  toRows(p, x, y, z, n);
+}
+#endif
+
+}  // namespace
+
+void SpringFamilies::load(const std::vector<Vec3>& pos, const std::vector<Vec3>& vel) {
+  const std::size_t n = static_cast<std::size_t>(std::max(masses_, 0));
+  if (n == 0) return;
+  // Rows a whole number of cache lines long plus three: six rows 2^k doubles apart (r = 64:
+  // 32 KiB) would fall on the same cache sets and alias in the store buffer (4K aliasing), which
+  // made this copy 4x slower.
+  soaStride_ = (n + 7) / 8 * 8 + 24;
+  soa_.resize(6 * soaStride_);
+  // Vec3 is three packed doubles: mass i's components are doubles 3i, 3i + 1, 3i + 2.
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+#if SPRINGLAB_AVX2_VARIANT
+  const auto rows = useAvx2() ? toRowsAvx2 : toRowsPortable;
+#else
+  const auto rows = toRowsPortable;
+#endif
+  double* row = soa_.data();
+  rows(pos.front().data(), row, row + soaStride_, row + 2 * soaStride_, n);
+  rows(vel.front().data(), row + 3 * soaStride_, row + 4 * soaStride_, row + 5 * soaStride_, n);
+}
+
+namespace {
+bool avx2Allowed = true;
+}  // namespace
+
+bool useAvx2() { return avx2Allowed && hasAvx2(); }
+void allowAvx2(bool allowed) { avx2Allowed = allowed; }
 
 bool hasAvx2() {
 #if SPRINGLAB_AVX2_VARIANT
@@ -134,7 +240,7 @@ GatherFunction gatherFor(int families, std::integer_sequence<int, N...>) {
   static constexpr GatherFunction kPortable[] = {nullptr, gatherPortable<N + 1>...};
 #if SPRINGLAB_AVX2_VARIANT
   static constexpr GatherFunction kAvx2[] = {nullptr, gatherAvx2<N + 1>...};
-  if (hasAvx2()) return kAvx2[families];
+  if (useAvx2()) return kAvx2[families];
 #endif
   return kPortable[families];
 }

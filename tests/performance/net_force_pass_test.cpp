@@ -1,11 +1,15 @@
 // The cloth's force pass sorts its springs into families (springlab/spring_families.hpp) and
 // sums them per mass in its own order: the forces must still be every spring's force added to
-// both its ends, as a plain loop over the list gives them, to round-off; and a spring list
-// edited after the first pass (reordered, rewired, with a duplicate) must be followed, not the
-// families sorted from the old one.
+// both its ends, as a plain loop over the list gives them, to round-off; a spring list edited
+// after the first pass (reordered, rewired, with a duplicate, new k) through editModel must be
+// followed, not the families and copies made from the old one; and an edit behind editModel's
+// back must be reported.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
 #include <random>
 #include <vector>
 
@@ -86,25 +90,90 @@ TEST(NetForcePass, AddsEverySpringsForceToBothEndsToRoundOff) {
   }
 }
 
-TEST(NetForcePass, FollowsASpringListEditedAfterTheFirstPass) {
+TEST(NetForcePass, FollowsSpringsEditedThroughEditModel) {
   std::unique_ptr<net::Net> cloth = randomCloth(7);
   ASSERT_LE(largestRelativeDifference(*cloth), 1e-12);
   std::mt19937 rng(7);
-  std::vector<Spring>& springs = cloth->springs;
 
   // The same springs in another order: the families' records moved.
-  std::shuffle(springs.begin(), springs.end(), rng);
+  cloth->editModel([&](Simulation& model) { std::shuffle(model.springs.begin(), model.springs.end(), rng); });
   EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after shuffling the spring list";
 
   // Rewired ends with the same count: one spring now joins two far masses, another is reversed.
-  springs[10].mass2 = static_cast<int>(cloth->masses.size()) - 1;
-  std::swap(springs[20].mass1, springs[20].mass2);
+  cloth->editModel([&](Simulation& model) {
+    model.springs[10].mass2 = static_cast<int>(model.masses.size()) - 1;
+    std::swap(model.springs[20].mass1, model.springs[20].mass2);
+  });
   EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after rewiring two springs";
 
   // A second spring between the same masses (it fits no family) and one spring fewer.
-  springs.push_back(springs[30]);
-  springs.erase(springs.begin() + 40);
+  cloth->editModel([&](Simulation& model) {
+    model.springs.push_back(model.springs[30]);
+    model.springs.erase(model.springs.begin() + 40);
+  });
   EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after duplicating one spring and removing another";
+
+  // Every spring's k, L0 and kd changed in place (what the panel's sliders do): the force pass
+  // works from copies, which the edit must refresh.
+  cloth->editModel([&](Simulation& model) {
+    for (Spring& s : model.springs) {
+      s.springConstant *= 3.0;
+      s.springLength *= 0.9;
+      s.frictionConstant *= 2.0;
+    }
+  });
+  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after changing every spring's k, L0 and kd";
+}
+
+TEST(NetForcePass, FollowsASpringListReplacedOrResizedWithoutEditModel) {
+  // A new list (new storage) or one of another length is sorted again at the next pass.
+  std::unique_ptr<net::Net> cloth = randomCloth(8);
+  ASSERT_LE(largestRelativeDifference(*cloth), 1e-12);
+  std::vector<Spring> copy = cloth->springs;
+  std::reverse(copy.begin(), copy.end());
+  cloth->springs = std::move(copy);
+  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after replacing the list with a reversed copy";
+  cloth->springs.pop_back();
+  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after removing the last spring";
+}
+
+TEST(NetForcePass, SaysWhenASpringIsChangedInPlaceWithoutEditModel) {
+  // k changed behind editModel's back: the force pass's copy is stale. Within kCheckPasses
+  // passes it must say so, naming the spring and editModel, not go on with the old k.
+  std::unique_ptr<net::Net> cloth = randomCloth(9);
+  cloth->evaluateForces(cloth->state, cloth->force);
+  const std::size_t edited = cloth->springs.size() / 2;
+  cloth->springs[edited].springConstant *= 2.0;
+  std::string message;
+  int passes = 0;
+  for (; passes < SpringFamilies::kCheckPasses + 1 && message.empty(); ++passes) {
+    try {
+      cloth->evaluateForces(cloth->state, cloth->force);
+    } catch (const std::logic_error& e) {
+      message = e.what();
+    }
+  }
+  ASSERT_FALSE(message.empty()) << "a spring changed in place went unnoticed for " << passes << " force passes";
+  EXPECT_NE(message.find("springs[" + std::to_string(edited) + "]"), std::string::npos) << message;
+  EXPECT_NE(message.find("editModel"), std::string::npos) << message;
+}
+
+TEST(SpringFamilies, Avx2AndBaselineLoopsGiveTheSameBits) {
+  // The force pass's loops are built twice (baseline, AVX2 without FMA): the same operations
+  // in the same order, so the same forces to the last bit on every mass.
+  if (!hasAvx2()) GTEST_SKIP() << "this build or CPU has no AVX2 variant of the force pass";
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    std::unique_ptr<net::Net> cloth = randomCloth(seed);
+    allowAvx2(true);
+    cloth->evaluateForces(cloth->state, cloth->force);
+    const std::vector<Vec3> avx2 = cloth->force;
+    allowAvx2(false);
+    cloth->evaluateForces(cloth->state, cloth->force);
+    allowAvx2(true);
+    ASSERT_EQ(avx2.size(), cloth->force.size());
+    EXPECT_EQ(std::memcmp(avx2.data(), cloth->force.data(), avx2.size() * sizeof(Vec3)), 0)
+        << "seed " << seed << ": the AVX2 loops' forces differ from the baseline's";
+  }
 }
 
 TEST(SpringFamilies, SortAGridIntoItsSixOffsetsAndTakeEverySpringOnce) {

@@ -116,7 +116,9 @@ class Simulation : public SceneFrontEnd {
   // a lab's own settings such as wind or gas): runs edit(*this), then forgets the
   // integrator's history (Verlet's previous positions belong to the old model) and re-arms
   // the blow-up check with the edited model's energy (an edit never counts as a blow-up).
-  // The state stays; the edit may change velocities (a newly pinned mass stops).
+  // The state stays; the edit may change velocities (a newly pinned mass stops). A lab may
+  // keep copies of the model (the cloth's force pass copies every spring's k, L0 and kd): a
+  // spring changed outside editModel is reported by the next force passes as an error.
   void editModel(const std::function<void(Simulation&)>& edit);
   // Pin a free mass or free a pinned one (a model edit; the mass stops).
   void togglePinned(int index);
@@ -194,6 +196,9 @@ class Simulation : public SceneFrontEnd {
   virtual void afterStep(double dt) { (void)dt; }
   // Called by reset() after the initial state is back: restore the lab's own data.
   virtual void onReset() {}
+  // Called by editModel() after the edit: refresh what the lab derived from the model (the
+  // cloth's copies of its springs for the force pass).
+  virtual void onModelEdited() {}
   // Whether accumulateForces adds force term k of forceTermNames() (false only while the
   // blow-up check's diagnosis leaves it out).
   bool forceTermOn(int k) const { return k != mutedForceTerm_; }

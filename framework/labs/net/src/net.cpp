@@ -2,6 +2,8 @@
 // linearises them with 2.7 and corrects each step with 2.5, 2.6 and 2.10.
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -57,90 +59,105 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
 
 namespace {
 
-// One run of springs (springlab/spring_families.hpp): mass first + t to mass first + d + t.
-// Its ends are two contiguous stretches of pos and vel, so this loop vectorises where the
-// exercise is inlined (the reference, built as one unit): several springs per sqrt and
-// division instruction. Returns false when a spring no longer joins the masses the run says.
-// (out is restrict here and in the two functions below, which the compiler vectorises: it
-// then knows the forces overwrite no input.)
-[[gnu::always_inline]] inline bool runOfSprings(const Spring* springs, const int* index, const Vec3* x1,
-                                                const Vec3* x2, const Vec3* v1, const Vec3* v2,
-                                                Vec3* __restrict out, int count, int first, int d) {
-  int moved = 0;  // nonzero: a spring's ends are not the run's
+// One run of springs (springlab/spring_families.hpp): mass t to mass t + d of the arrays
+// given, which start at the run's first mass, with the spring's k, L0 and kd at t. Its ends,
+// velocities and parameters are contiguous arrays of doubles, so this loop vectorises where
+// the exercise is inlined (the reference, built as one unit): four springs per sqrt and
+// division instruction with AVX2, every operand one load. (Every pointer is restrict and each
+// operand is read into a local before the call: without either, GCC 12 does not vectorise it.)
+[[gnu::always_inline]] inline void runOfSprings(const double* __restrict x, const double* __restrict y,
+                                                const double* __restrict z, const double* __restrict vx,
+                                                const double* __restrict vy, const double* __restrict vz,
+                                                const double* __restrict k, const double* __restrict restLength,
+                                                const double* __restrict kd, Vec3* __restrict out, int count, int d) {
   for (int t = 0; t < count; ++t) {
-    const Spring& sp = springs[index[t]];
-    moved |= (sp.mass1 - first - t) | (sp.mass2 - first - d - t);
-    // Velocities read here, not only inside the exercise's l != 0 branch: loads every spring
-    // makes anyway, so the compiler may turn that branch into a select.
-    const Vec3 u1(v1[t].x(), v1[t].y(), v1[t].z()), u2(v2[t].x(), v2[t].y(), v2[t].z());
-    out[t] = springDamperForce(x1[t], x2[t], u1, u2, sp.springConstant, sp.springLength, sp.frictionConstant);
+    const double x1 = x[t], y1 = y[t], z1 = z[t], x2 = x[t + d], y2 = y[t + d], z2 = z[t + d];
+    const double u1 = vx[t], v1 = vy[t], w1 = vz[t], u2 = vx[t + d], v2 = vy[t + d], w2 = vz[t + d];
+    const double stiffness = k[t], length = restLength[t], damping = kd[t];
+    out[t] = springDamperForce(Vec3(x1, y1, z1), Vec3(x2, y2, z2), Vec3(u1, v1, w1), Vec3(u2, v2, w2), stiffness,
+                               length, damping);
   }
-  return moved == 0;
 }
 
-[[gnu::flatten]] bool runOfSpringsPortable(const Spring* springs, const int* index, const Vec3* x1, const Vec3* x2,
-                                           const Vec3* v1, const Vec3* v2, Vec3* __restrict out, int count, int first,
-                                           int d) {
-  return runOfSprings(springs, index, x1, x2, v1, v2, out, count, first, d);
+// The same loop for the machine's baseline and (GCC on x86-64) for AVX2: no FMA, the same
+// operations in the same order, so the same bits (test SpringFamilies.Avx2AndBaselineLoopsGiveTheSameBits).
+using RunFunction = void (*)(const double*, const double*, const double*, const double*, const double*,
+                             const double*, const double*, const double*, const double*, Vec3*, int, int);
+
+// (restrict on these functions' own parameters: the inlined loop's alone does not survive.)
+#define SPRINGLAB_RUN_PARAMETERS                                                                              \
+  const double* __restrict x, const double* __restrict y, const double* __restrict z, const double* __restrict vx, \
+      const double* __restrict vy, const double* __restrict vz, const double* __restrict k,                        \
+      const double* __restrict restLength, const double* __restrict kd, Vec3* __restrict out, int count, int d
+[[gnu::flatten]] void runOfSpringsPortable(SPRINGLAB_RUN_PARAMETERS) {
+  runOfSprings(x, y, z, vx, vy, vz, k, restLength, kd, out, count, d);
 }
 
 #if SPRINGLAB_AVX2_VARIANT
-[[gnu::flatten]] SPRINGLAB_TARGET_AVX2 bool runOfSpringsAvx2(const Spring* springs, const int* index, const Vec3* x1,
-                                                             const Vec3* x2, const Vec3* v1, const Vec3* v2,
-                                                             Vec3* __restrict out, int count, int first, int d) {
-  return runOfSprings(springs, index, x1, x2, v1, v2, out, count, first, d);
+[[gnu::flatten]] SPRINGLAB_TARGET_AVX2 void runOfSpringsAvx2(SPRINGLAB_RUN_PARAMETERS) {
+  runOfSprings(x, y, z, vx, vy, vz, k, restLength, kd, out, count, d);
 }
 #endif
+#undef SPRINGLAB_RUN_PARAMETERS
 
-// The runs [firstRun, lastRun) into their families' buffers.
-bool runSpringForces(const Spring* springs, const int* order, const SpringFamilies::Run* runs, int firstRun,
-                     int lastRun, const int* offsets, Vec3* const* buffers, const Vec3* pos, const Vec3* vel) {
-  bool listed = true;
+// The runs [firstRun, lastRun) of the families (their load()ed state) into their buffers.
+void runSpringForces(const SpringFamilies& families, int firstRun, int lastRun, Vec3* const* buffers) {
 #if SPRINGLAB_AVX2_VARIANT
-  const auto runOf = hasAvx2() ? runOfSpringsAvx2 : runOfSpringsPortable;
+  const RunFunction runOf = useAvx2() ? runOfSpringsAvx2 : runOfSpringsPortable;
 #else
-  const auto runOf = runOfSpringsPortable;
+  const RunFunction runOf = runOfSpringsPortable;
 #endif
+  const double* x[6];
+  for (int c = 0; c < 6; ++c) x[c] = families.loaded(c);
+  const SpringFamilies::Run* runs = families.runs().data();
   for (int r = firstRun; r < lastRun; ++r) {
     const SpringFamilies::Run& run = runs[r];
-    const int d = offsets[run.family];
-    listed = runOf(springs, order + run.spring, pos + run.first, pos + run.first + d, vel + run.first,
-                   vel + run.first + d, buffers[run.family] + run.first, run.count, run.first, d) &&
-             listed;
+    const int i = run.first, at = run.spring;
+    runOf(x[0] + i, x[1] + i, x[2] + i, x[3] + i, x[4] + i, x[5] + i, families.stiffness() + at,
+          families.restLength() + at, families.damping() + at, buffers[run.family] + i, run.count,
+          families.offset(run.family));
   }
-  return listed;
+}
+
+// f_i += m_i (g - c v_i) for the masses [begin, end), on the doubles of the packed Vec3s
+// (restrict: the compiler vectorises it; through Vec3 and std::vector it did not).
+void addGravityAndAir(const Mass* __restrict masses, const double* __restrict v, double* __restrict f,
+                      const Vec3& gravity, double airFriction, int begin, int end) {
+  const double g[3] = {gravity.x(), gravity.y(), gravity.z()};
+  for (int i = begin; i < end; ++i) {
+    const double m = masses[i].m;
+    for (int c = 0; c < 3; ++c) f[3 * i + c] += m * (g[c] - airFriction * v[3 * i + c]);
+  }
 }
 
 }  // namespace
 
-bool Net::familySpringForces(const State& s) {
-  int offsets[SpringFamilies::kMaxFamilies];
+void Net::familySpringForces(const State& s) {
+  families_.load(s.pos, s.vel);
   Vec3* buffers[SpringFamilies::kMaxFamilies];
-  for (int q = 0; q < families_.families(); ++q) {
-    offsets[q] = families_.offset(q);
-    buffers[q] = families_.forces(q);
-  }
-  const std::vector<SpringFamilies::Run>& runs = families_.runs();
-  const int count = static_cast<int>(runs.size());
+  for (int q = 0; q < families_.families(); ++q) buffers[q] = families_.forces(q);
+  const int count = static_cast<int>(families_.runs().size());
   const int threads = springs.size() >= static_cast<std::size_t>(kParallelSprings) ? threadBudget() : 1;
   if (threads <= 1) {
-    return runSpringForces(springs.data(), families_.order().data(), runs.data(), 0, count, offsets, buffers,
-                           s.pos.data(), s.vel.data());
+    runSpringForces(families_, 0, count, buffers);
+    return;
   }
   // Each thread a share of the runs; springDamperForce may throw (a missing exercise 2.2):
   // carried out of the parallel region.
   LoopExceptions exceptions;
-  int listed = 1;
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(&& : listed)
+#pragma omp parallel for schedule(static) num_threads(threads)
   for (int t = 0; t < threads; ++t) {
-    exceptions.run([&] {
-      listed = runSpringForces(springs.data(), families_.order().data(), runs.data(), count * t / threads,
-                               count * (t + 1) / threads, offsets, buffers, s.pos.data(), s.vel.data()) &&
-               listed;
-    });
+    exceptions.run([&] { runSpringForces(families_, count * t / threads, count * (t + 1) / threads, buffers); });
   }
   exceptions.rethrow();
-  return listed != 0;
+}
+
+void Net::onModelEdited() {
+  // The force pass's copies of the springs (k, L0, kd) follow the edit; a list rewired,
+  // reordered or resized is sorted again.
+  if (!families_.fits(springs, numOfMasses()) || !families_.refresh(springs)) {
+    families_ = SpringFamilies(springs, numOfMasses());
+  }
 }
 
 // Both loops below run once per spring per step: `flatten` inlines the exercises they call
@@ -156,11 +173,17 @@ std::vector<std::string> Net::forceTermNames() const {
   // Springs: equal and opposite on their ends (exercise 2.2), family by family
   // (springlab/spring_families.hpp), then the springs no family takes.
   if (forceTermOn(kSprings)) {
-    if (!families_.fits(springs.size(), numOfMasses()) || !familySpringForces(s)) {
-      // A new or edited spring list: sort it again.
+    if (!families_.fits(springs, numOfMasses())) {
+      // A new spring list (or one grown or shrunk): sort it.
       families_ = SpringFamilies(springs, numOfMasses());
-      familySpringForces(s);
+    } else if (const int k = families_.check(springs); k >= 0) {
+      // A spring changed in place behind editModel's back: its copy is stale.
+      throw std::logic_error("springs[" + std::to_string(k) +
+                             "] changed without Simulation::editModel: the cloth's force pass works from copies of "
+                             "the springs made when they were last edited; change springs inside "
+                             "sim.editModel([&](Simulation& model) { ... })");
     }
+    familySpringForces(s);
     families_.gather(f);
     for (const int k : families_.leftovers()) {
       const Spring& sp = springs[static_cast<std::size_t>(k)];
@@ -175,8 +198,9 @@ std::vector<std::string> Net::forceTermNames() const {
   if (forceTermOn(kGravityAndAir)) {
     const int threads = n > kParallelMasses ? threadBudget() : 1;
 #pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
-    for (int i = 0; i < n; ++i) {
-      f[i] += masses[i].m * (gravitation - settings.airFriction * s.vel[i]);
+    for (int t = 0; t < threads; ++t) {
+      addGravityAndAir(masses.data(), s.vel.front().data(), f.front().data(), gravitation, settings.airFriction,
+                       n * t / threads, n * (t + 1) / threads);
     }
   }
   // Wind on the surface, through each mass's normal and area (exercises 2.3 and 2.4).
@@ -249,8 +273,12 @@ void Net::afterStep(double dt) {
 
   // Stretch limiting: the tethers (given) bound each mass's distance from the pins, then
   // exercise 2.6 fixes the springs; then self-collision (2.10). All move masses.
-  inverseMass_.resize(masses.size());
-  for (int i = 0; i < numOfMasses(); ++i) inverseMass_[static_cast<std::size_t>(i)] = inverseMass(i);
+  // (The masses' 1/m only when a correction below moves masses: a bare cloth skips the pass.)
+  const bool colliders = !spheres_.empty() || !settings.planes.empty();
+  if (settings.stretchLimiting || settings.selfCollision || colliders) {
+    inverseMass_.resize(masses.size());
+    for (int i = 0; i < numOfMasses(); ++i) inverseMass_[static_cast<std::size_t>(i)] = inverseMass(i);
+  }
   if (settings.stretchLimiting) {
     const PhaseProfile::Scope phase(profile, Phase::kStretchLimit);
     tethers_.apply(state.pos, state.vel, inverseMass_, kTetherShare * settings.maxStretch, dt);
@@ -269,7 +297,6 @@ void Net::afterStep(double dt) {
   // sphere would otherwise cut into it.
   const PhaseProfile::Scope collisions(profile, Phase::kCollisions);
   const double offset = settings.contactOffset;
-  const bool colliders = !spheres_.empty() || !settings.planes.empty();  // else no pass over the masses
   for (int i = 0; colliders && i < numOfMasses(); ++i) {
     if (inverseMass_[static_cast<std::size_t>(i)] == 0.0) continue;
     for (const SphereCollider& sphere : spheres_) {

@@ -54,6 +54,7 @@ class Net final : public Simulation {
   void accumulateForces(const State& s, std::vector<Vec3>& f) override;
   void afterStep(double dt) override;
   void onReset() override;
+  void onModelEdited() override;
   std::vector<Parameter> declareParameters() override;
 
  private:
@@ -66,9 +67,8 @@ class Net final : public Simulation {
   int rows_ = 0;
   std::vector<SphereCollider> spheres_;            // current colliders
   std::vector<ColliderDrag> drags_;                // [spheres] where the user holds each one
-  // The spring forces of state s into families_' buffers; false (and unfinished) when a spring
-  // no longer joins the masses its family's run says: the list was edited since it was sorted.
-  bool familySpringForces(const State& s);
+  // The spring forces of state s into families_' buffers.
+  void familySpringForces(const State& s);
 
   SpringFamilies families_;                        // the springs sorted for the force pass
   std::vector<Vec3> normals_;                      // [n] scratch for the wind
