@@ -76,15 +76,6 @@ void galerkin(const BlockRows& A, const BlockRows& P, BlockRows& AP, const std::
 }
 }  // namespace
 
-void SmoothedAggregationCG::BlockRows::residual(const Eigen::VectorXd& r, const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  y.resize(3 * rows());
-  for (int b = 0; b < rows(); ++b) {
-    Vec3 sum = r.segment<3>(3 * b);
-    for (int e = start[at(b)]; e < start[at(b) + 1]; ++e) sum.noalias() -= value[at(e)] * x.segment<3>(3 * col[at(e)]);
-    y.segment<3>(3 * b) = sum;
-  }
-}
-
 void SmoothedAggregationCG::aggregate(Level& level) {
   const BlockRows& A = level.A;
   const int rows = A.rows();
@@ -319,7 +310,17 @@ void SmoothedAggregationCG::vCycle(std::size_t l, const BlockSystem& system, con
     for (int e = A.start[at(b)]; e < A.start[at(b) + 1] && A.col[at(e)] < b; ++e) sum.noalias() -= A.value[at(e)] * z.segment<3>(3 * A.col[at(e)]);
     z.segment<3>(3 * b) = level.inverseDiagonal[at(b)] * sum;
   }
-  level.A.residual(r, z, level.t);
+  // The residual t = r - A z after a forward sweep: each row b was solved against the z_j of
+  // j <= b, so only the blocks right of the diagonal remain, t_b = -sum_{j > b} A_bj z_j
+  // (to round-off): half a pass over the rows instead of a whole one.
+  level.t.resize(r.size());
+  for (int b = 0; b < rows; ++b) {
+    Vec3 sum = Vec3::Zero();
+    for (int e = A.start[at(b) + 1] - 1; e >= A.start[at(b)] && A.col[at(e)] > b; --e) {
+      sum.noalias() -= A.value[at(e)] * z.segment<3>(3 * A.col[at(e)]);
+    }
+    level.t.segment<3>(3 * b) = sum;
+  }
   // rc = P^T t, the next level's correction xc, z += P xc.
   level.rc.setZero(3 * level.aggregates);
   for (int b = 0; b < rows; ++b) {

@@ -10,8 +10,9 @@
 //   the coarse matrix stays as sparse as the fine one);
 //   A_c = P^T A P (Galerkin), the next level's matrix, until a level has at most
 //   kDirectBlocks rows: that one is factored densely;
-//   V-cycle: a forward block Gauss-Seidel sweep, the coarser levels' correction, a backward
-//   sweep (symmetric, so CG may use it).
+//   V-cycle: a forward block Gauss-Seidel sweep, the coarser levels' correction of what it
+//   leaves (that residual from the blocks right of the diagonal only), a backward sweep
+//   (symmetric, so CG may use it).
 // What is built when: once per layout of the system (the masses and springs do not change
 // from step to step, only the values do) the aggregates and every index the numbers below
 // need. P's values from the step that builds them, kept while they still precondition well
@@ -52,8 +53,6 @@ class SmoothedAggregationCG {
     std::vector<int> start{0}, col;
     std::vector<Mat3> value;
     int rows() const { return static_cast<int>(start.size()) - 1; }
-    // y = r - A x (one pass: the smoothing sweeps' residual)
-    void residual(const Eigen::VectorXd& r, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   };
 
  private:
