@@ -13,9 +13,10 @@ struct SolverSettings {
   // implicit_euler: CG's preconditioner: "block_jacobi" (each mass's 3x3 block),
   // "smoothed_aggregation" (an AMG V-cycle, its hierarchy built once per layout, its coarse
   // matrices every step: about 14-22 iterations at r = 32-128 on the swinging fabric against
-  // 123-540), or "auto" (the default): block Jacobi until a step needs more than 150
-  // iterations, then smoothed aggregation (heavy cloth and the fabric up to r = 32 stay with
-  // block Jacobi, cheaper there over a whole run; the fabric from r = 64 on switches).
+  // 123-540), or "auto" (the default): block Jacobi until a step needs more than 25
+  // iterations per decade of the tolerance (150 at 1e-6, 75 at 1e-3), then smoothed
+  // aggregation (heavy cloth and the fabric up to r = 32 stay with block Jacobi, cheaper there
+  // over a whole run; the fabric from r = 64 on switches).
   std::string preconditioner = "auto";
   // implicit_euler_blocks: block-Jacobi sweeps of the implicit system per step, at most. One
   // sweep (the cloth thesis' method) solves each mass against its neighbours' old velocities.
