@@ -158,9 +158,10 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
 
   // 3. Each integrator: the largest dt on the ladder that is stable and within half the
   //    tolerance (integrators in parallel, each walking down its ladder). A method stable at
-  //    any dt (c = inf: implicit Euler, XPBD, projective dynamics) starts higher, at the
-  //    scene's frame length (the largest step the viewer can take), since RK4's limit says
-  //    nothing about it: on a stiff scene its own step can be many times that limit.
+  //    any dt (implicit Euler, XPBD, projective dynamics) starts higher, at the scene's frame
+  //    length (the largest step the viewer can take), since RK4's limit says nothing about
+  //    it: on a stiff scene its own step can be many times that limit. The others start at
+  //    the first rung within their own exact limit (stepStableDt).
   const double frame = sceneDt(scene) * scene.json.at("substeps").get<double>();
   int frameLevel = 0;
   while (frameLevel < first && interval / std::ldexp(1.0, frameLevel) > frame * (1.0 + 1e-9)) ++frameLevel;
@@ -169,7 +170,16 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
   parallelFor(static_cast<int>(names.size()), o.threads, [&](int i) {
     Candidate& c = advice.candidates[i];
     c.integrator = names[i];
-    const int start = std::isinf(stabilityConstant(registry, names[i])) ? frameLevel : first;
+    // The first rung at or below the method's own stability limit (stepStableDt).
+    double limit = 0.0;
+    try {
+      limit = sceneStepStableDt(registry, model, names[i]);
+    } catch (const NotImplemented& e) {
+      c.note = e.what();
+      return;
+    }
+    int start = std::isinf(limit) ? frameLevel : 0;
+    while (std::isfinite(limit) && start < first + o.levels - 1 && interval / std::ldexp(1.0, start) > limit * (1.0 + 1e-9)) ++start;
     for (int l = start; l < first + o.levels; ++l) {
       RunSpec spec{model, names[i], interval / static_cast<double>(per(l)), per(l), o.samples};
       spec.keepPositions = false;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "springlab/frequency_estimate.hpp"
+#include "springlab/step_stability.hpp"
 
 namespace springlab::studies {
 
@@ -113,6 +114,14 @@ double sceneLanczosEstimate(const Registry& registry, const SceneDocument& scene
   LoadedScene loaded = registry.loadScene(scene);
   scaleSprings(*loaded.sim, stiffnessScale);
   return lanczosEstimate(*loaded.sim, loaded.sim->state).maxAngularFrequency;
+}
+
+double sceneStepStableDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                         double stiffnessScale) {
+  LoadedScene loaded = registry.loadScene(scene);
+  loaded.sim->setIntegrator(registry.makeIntegrator(integrator));
+  scaleSprings(*loaded.sim, stiffnessScale);
+  return stepStableDt(*loaded.sim);
 }
 
 double stabilityConstant(const Registry& registry, const std::string& integrator) {

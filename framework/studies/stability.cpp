@@ -85,27 +85,27 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
   study.duration = o.duration > 0.0 ? o.duration : defaultStabilityDuration(study.maxAngularFrequency);
   const std::vector<std::string> names = studyIntegrators(registry, scene, o.integrators);
 
-  // One bisection per integrator, in parallel; the first guess is the prediction (or, for a
-  // method without an undamped limit, the symplectic Euler prediction).
+  // One prediction and one bisection per integrator, in parallel; the bisection starts at
+  // the prediction (a method stable at every dt starts at 100 / w_max: stable there means no
+  // limit within the doublings, reported as inf).
   std::vector<CriticalDt> results(names.size());
   std::vector<std::string> missing(names.size());
   parallelFor(static_cast<int>(names.size()), o.threads, [&](int i) {
     const double c = stabilityConstant(registry, names[i]);
     const double w = study.maxAngularFrequency;
-    const double predicted = c > 0.0 && w > 0.0 ? c / w : 0.0;
-    // An unconditionally stable method (c = inf) starts at 100 / w_max: stable there means no
-    // limit within the doublings (reported as inf).
-    const double guess = std::isfinite(predicted) && predicted > 0.0 ? predicted
-                         : w > 0.0 ? (std::isinf(c) ? 100.0 / w : 2.0 / w)
-                                   : 0.01;
     try {
+      const double predicted = sceneStepStableDt(registry, scene, names[i]);
+      const double guess = std::isfinite(predicted) && predicted > 0.0 ? predicted
+                           : w > 0.0 ? (std::isinf(predicted) ? 100.0 / w : 2.0 / w)
+                                     : 0.01;
       results[i] = criticalDt(registry, scene, names[i], study.duration, guess, o.tolerance, o.maxSteps);
+      results[i].predicted = predicted;
     } catch (const NotImplemented& e) {
       missing[i] = e.what();
       return;
     }
     results[i].stabilityConstant = c;
-    results[i].predicted = predicted;
+    results[i].undamped = c > 0.0 && w > 0.0 ? c / w : 0.0;
   }, o.progress ? "stability bisections" : "");
   for (size_t i = 0; i < names.size(); ++i) {
     if (missing[i].empty()) study.methods.push_back(results[i]);
@@ -126,11 +126,15 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
     for (int k = -6; k <= 6; ++k) map.scales.push_back(std::pow(10.0, k / 3.0));
   }
 
-  // The predicted boundary: w_max at each stiffness.
-  for (double s : map.scales) map.maxAngularFrequency.push_back(sceneLanczosEstimate(registry, scene, s));
+  // The predicted boundary: the limit of the step at each stiffness (and w_max there).
+  for (double s : map.scales) {
+    map.maxAngularFrequency.push_back(sceneLanczosEstimate(registry, scene, s));
+    map.predicted.push_back(sceneStepStableDt(registry, scene, map.integrator, s));
+  }
   const double w1 = sceneLanczosEstimate(registry, scene, 1.0);
   map.duration = o.duration > 0.0 ? o.duration : defaultStabilityDuration(w1);
-  const double centre = (map.stabilityConstant > 0.0 ? map.stabilityConstant : 2.0) / std::max(w1, 1e-12);
+  const double atScale1 = sceneStepStableDt(registry, scene, map.integrator, 1.0);
+  const double centre = std::isfinite(atScale1) && atScale1 > 0.0 ? atScale1 : 2.0 / std::max(w1, 1e-12);
 
   // Every cell is one run over the same simulated time.
   for (double s : map.scales) {
@@ -153,11 +157,13 @@ void writeCsv(const Stability& study, const std::string& path) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write the CSV file");
   out << std::setprecision(10);
-  out << "integrator,stability_constant,w_max_rad_s,gershgorin_rad_s,predicted_dt_s,measured_dt_s,measured_over_predicted,duration_s\n";
+  out << "integrator,stability_constant,w_max_rad_s,gershgorin_rad_s,undamped_dt_s,predicted_dt_s,measured_dt_s,"
+         "measured_over_predicted,duration_s\n";
   for (const CriticalDt& m : study.methods) {
+    const bool finite = std::isfinite(m.predicted) && m.predicted > 0.0;
     out << m.integrator << ',' << m.stabilityConstant << ',' << study.maxAngularFrequency << ','
-        << study.gershgorinBound << ',' << m.predicted << ',' << m.measured << ','
-        << (m.predicted > 0.0 ? m.measured / m.predicted : 0.0) << ',' << study.duration << '\n';
+        << study.gershgorinBound << ',' << m.undamped << ',' << m.predicted << ',' << m.measured << ','
+        << (finite ? m.measured / m.predicted : 0.0) << ',' << study.duration << '\n';
   }
   if (!out) throw std::runtime_error(path + ": writing the CSV file failed");
 }
@@ -174,11 +180,12 @@ void writeCsv(const StabilityMap& map, const std::string& cellsPath, const std::
   std::ofstream boundary(boundaryPath);
   if (!boundary) throw std::runtime_error(boundaryPath + ": cannot write the CSV file");
   boundary << std::setprecision(10);
-  boundary << "stiffness_scale,spring_constant_N_m,w_max_rad_s,predicted_dt_s\n";
+  boundary << "stiffness_scale,spring_constant_N_m,w_max_rad_s,undamped_dt_s,predicted_dt_s\n";
   for (size_t i = 0; i < map.scales.size(); ++i) {
     const double w = map.maxAngularFrequency[i];
     boundary << map.scales[i] << ',' << map.scales[i] * map.springConstant << ',' << w << ','
-             << (map.stabilityConstant > 0.0 && w > 0.0 ? map.stabilityConstant / w : 0.0) << '\n';
+             << (map.stabilityConstant > 0.0 && w > 0.0 ? map.stabilityConstant / w : 0.0) << ','
+             << map.predicted[i] << '\n';
   }
   if (!cells || !boundary) throw std::runtime_error(cellsPath + ": writing the CSV files failed");
 }

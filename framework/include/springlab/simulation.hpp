@@ -149,6 +149,7 @@ class Simulation : public SceneFrontEnd {
   const State& initialState() const { return initialState_; }
   // Turn the blow-up check off for studies that want to watch a method fail.
   void setBlowUpCheck(bool enabled) { blowUpCheckEnabled_ = enabled; }
+  bool blowUpCheckEnabled() const { return blowUpCheckEnabled_; }
 
   // ---- diagnostics --------------------------------------------------------------------
   Energies energies() const;
@@ -158,6 +159,10 @@ class Simulation : public SceneFrontEnd {
   // (springGershgorinBound); labs add the stiffness of their other forces (ground, gas,
   // contacts). lanczosEstimate (springlab/frequency_estimate.hpp) gives an estimate instead.
   virtual double angularFrequencyBound() const;
+  // Whether the scene itself puts energy in at the current state (wind, a pump still
+  // inflating): the blow-up check's passivity test then lets the energy rise. Moving pinned
+  // masses and the user's drags are seen without it. Default: a passive scene.
+  virtual bool suppliesEnergy() const { return false; }
 
   // ---- force terms, for the blow-up check's diagnosis -----------------------------------
   // The lab's force terms by name, indexed as its accumulateForces tests them with

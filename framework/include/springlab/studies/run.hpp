@@ -50,7 +50,13 @@ std::vector<double> observableSeries(const RunResult& run, const std::string& na
 // with every spring's k multiplied by stiffnessScale.
 double sceneLanczosEstimate(const Registry& registry, const SceneDocument& scene, double stiffnessScale = 1.0);
 
-// The integrator's stability constant c (dt < c / w_max), by name.
+// The exact stability limit of the integrator's step on the scene (stepStableDt: the
+// linearised step at the initial state, dampers, contacts and pressure included), with every
+// spring's k multiplied by stiffnessScale. NotImplemented propagates.
+double sceneStepStableDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                         double stiffnessScale = 1.0);
+
+// The integrator's stability constant c (dt < c / w_max for undamped springs), by name.
 double stabilityConstant(const Registry& registry, const std::string& integrator);
 
 // The integrators a study compares: `requested` as given, or else every registered one that

@@ -1,9 +1,11 @@
 #pragma once
 // Where each method stops being stable: the largest dt that survives a fixed simulated time
-// under the blow-up check, found by bracketing and bisection, against the prediction
-// c / w_max (c: the method's stability constant, w_max: the Lanczos estimate at the start).
+// under the blow-up check, found by bracketing and bisection, against the prediction: the
+// exact limit of the step that runs (stepStableDt: the linearised step at the start, with
+// the scene's dampers, contacts and pressure), beside the undamped rule c / w_max (c: the
+// method's stability constant, w_max: the Lanczos estimate at the start).
 // And a map over stiffness x dt for one integrator: stable and unstable cells, with the
-// predicted boundary c / w_max(stiffness).
+// predicted boundary at each stiffness.
 #include <string>
 #include <vector>
 
@@ -25,7 +27,8 @@ struct StabilityOptions {
 struct CriticalDt {
   std::string integrator;
   double stabilityConstant = 0.0;  // c
-  double predicted = 0.0;          // s, c / w_max; 0 when the method has no undamped limit
+  double undamped = 0.0;           // s, c / w_max; 0 when the method has no undamped limit
+  double predicted = 0.0;          // s, stepStableDt: 0 no stable dt, +inf no limit
   double measured = 0.0;           // s
   int trials = 0;
 };
@@ -74,6 +77,7 @@ struct StabilityMap {
   double duration = 0.0;
   std::vector<double> scales;
   std::vector<double> maxAngularFrequency;  // [scales] rad/s
+  std::vector<double> predicted;            // [scales] s, stepStableDt at each stiffness
   std::vector<StabilityMapCell> cells;
 };
 

@@ -1,0 +1,353 @@
+#include "springlab/step_stability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
+#include "springlab/frequency_estimate.hpp"
+
+namespace springlab {
+
+namespace {
+
+// One free coordinate: mass i, axis c.
+struct Dof {
+  int mass;
+  int axis;
+};
+
+// The coordinates that can move at the initial state, positions then velocities.
+std::vector<Dof> freeCoordinates(const Simulation& sim) {
+  std::vector<Dof> dofs;
+  for (int i = 0; i < sim.numOfMasses(); ++i) {
+    if (sim.inverseMass(i) == 0.0) continue;
+    for (int c = 0; c < sim.dimension; ++c) dofs.push_back({i, c});
+  }
+  return dofs;
+}
+
+// Typical length of the scene: the springs' mean rest length, else the extent of the masses.
+double typicalLength(const Simulation& sim) {
+  double sum = 0.0;
+  for (const Spring& s : sim.springs) sum += s.springLength;
+  if (!sim.springs.empty() && sum > 0.0) return sum / static_cast<double>(sim.springs.size());
+  const Bounds b = sim.Simulation::reach();
+  const double extent = (b.hi - b.lo).norm();
+  return extent > 0.0 ? extent : 1.0;
+}
+
+Eigen::VectorXd randomDirection(int size, unsigned seed);
+template <class Apply>
+Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed);
+
+// Runs the scene from its initial state, or from it moved by a perturbation, and records
+// the free coordinates after each step, made dimensionless: positions over the typical
+// length, velocities over that length times w_max. The blow-up check is off meanwhile, and
+// the simulation is left reset.
+class LinearisedRuns {
+ public:
+  LinearisedRuns(Simulation& sim, const StepStabilityOptions& o) : sim_(sim), dofs_(freeCoordinates(sim)) {
+    sim_.reset();
+    length_ = typicalLength(sim_);
+    double w = 0.0;
+    try {
+      w = lanczosEstimate(sim_, sim_.initialState()).maxAngularFrequency;
+    } catch (const std::exception&) {
+      w = 0.0;
+    }
+    if (!(w > 0.0) || !std::isfinite(w)) w = sim_.angularFrequencyBound();
+    frequency_ = w > 0.0 && std::isfinite(w) ? w : 1.0;
+    epsilon_ = o.relativePerturbation;
+  }
+
+  int size() const { return 2 * static_cast<int>(dofs_.size()); }
+  double maxAngularFrequency() const { return frequency_; }
+  int steps() const { return steps_; }
+
+  // Snapshots [size x (count + 1)] after 1 .. count + 1 steps at dt, starting from the
+  // initial state plus epsilon times `direction` (dimensionless, largest entry 1; empty: none).
+  // Stops early (fewer columns) when the state turns non-finite.
+  Eigen::MatrixXd run(double dt, int count, const Eigen::VectorXd& direction) {
+    sim_.reset();
+    State& s = sim_.state;
+    const int n = static_cast<int>(dofs_.size());
+    if (direction.size() == size()) {
+      for (int j = 0; j < n; ++j) {
+        s.pos[dofs_[j].mass][dofs_[j].axis] += epsilon_ * length_ * direction[j];
+        s.vel[dofs_[j].mass][dofs_[j].axis] += epsilon_ * length_ * frequency_ * direction[n + j];
+      }
+    }
+    sim_.integrator().reset();
+    const bool checked = sim_.blowUpCheckEnabled();
+    sim_.setBlowUpCheck(false);
+    Eigen::MatrixXd out(size(), count + 1);
+    int columns = 0;
+    try {
+      for (int k = 0; k <= count; ++k) {
+        sim_.operate(dt);
+        ++steps_;
+        bool finite = true;
+        for (int j = 0; j < n; ++j) {
+          out(j, k) = s.pos[dofs_[j].mass][dofs_[j].axis] / length_;
+          out(n + j, k) = s.vel[dofs_[j].mass][dofs_[j].axis] / (length_ * frequency_);
+          finite = finite && std::isfinite(out(j, k)) && std::isfinite(out(n + j, k));
+        }
+        if (!finite) break;
+        columns = k + 1;
+      }
+    } catch (...) {
+      sim_.setBlowUpCheck(checked);
+      sim_.reset();
+      throw;
+    }
+    sim_.setBlowUpCheck(checked);
+    sim_.reset();
+    return out.leftCols(columns);
+  }
+
+  double epsilon() const { return epsilon_; }
+
+  // modalDirections(count), computed once.
+  const Eigen::MatrixXd& directions(int count) {
+    if (directions_.cols() == 0) directions_ = modalDirections(count);
+    return directions_;
+  }
+
+  // Directions (orthonormal columns, dimensionless state coordinates) that hold the modes
+  // which set a limit: the `count` stiffest modes of M^-1 K and the `count` most damped of
+  // M^-1 C at the initial state (K = -dF/dx, C = -dF/dv by central differences of the
+  // forces), each as a displacement and as a velocity. For a linear scene with proportional
+  // damping these are invariant under the step, and the Ritz values on them are the modes'
+  // exact eigenvalues; otherwise they are the modes most likely to fail first.
+  Eigen::MatrixXd modalDirections(int count) {
+    sim_.reset();
+    const int n = static_cast<int>(dofs_.size());
+    const State at = sim_.state;
+    const Stats stats = sim_.stats;
+    std::vector<Vec3> plus, minus;
+    // B u = M^-1/2 A M^-1/2 u with A d = -(F(moved by +h d) - F(moved by -h d)) / 2h, moving
+    // positions (A = K) or velocities (A = C).
+    auto mass = [&](int j) { return 1.0 / sim_.inverseMass(dofs_[j].mass); };
+    auto symmetric = [&](bool velocities) {
+      return [&, velocities](const Eigen::VectorXd& u) {
+        Eigen::VectorXd d(n);
+        for (int j = 0; j < n; ++j) d[j] = u[j] / std::sqrt(mass(j));
+        Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
+        const double largest = d.cwiseAbs().maxCoeff();
+        if (largest == 0.0) return out;
+        const double h = epsilon_ * length_ * (velocities ? frequency_ : 1.0) / largest;
+        State up = at, down = at;
+        for (int j = 0; j < n; ++j) {
+          Vec3& a = velocities ? up.vel[dofs_[j].mass] : up.pos[dofs_[j].mass];
+          Vec3& b = velocities ? down.vel[dofs_[j].mass] : down.pos[dofs_[j].mass];
+          a[dofs_[j].axis] += h * d[j];
+          b[dofs_[j].axis] -= h * d[j];
+        }
+        sim_.evaluateForces(up, plus);
+        sim_.evaluateForces(down, minus);
+        for (int j = 0; j < n; ++j) {
+          const int i = dofs_[j].mass, c = dofs_[j].axis;
+          out[j] = -(plus[i][c] - minus[i][c]) / (2.0 * h) / std::sqrt(mass(j));
+        }
+        return out;
+      };
+    };
+    const Eigen::MatrixXd stiff = topEigenvectors(symmetric(false), n, count, 2024);
+    const Eigen::MatrixXd damped = topEigenvectors(symmetric(true), n, count, 2025);
+    sim_.stats = stats;
+
+    // Mode shapes x = M^-1/2 psi, as displacements and as velocities.
+    Eigen::MatrixXd U = Eigen::MatrixXd::Zero(size(), 2 * (stiff.cols() + damped.cols()));
+    int column = 0;
+    for (const Eigen::MatrixXd* modes : {&stiff, &damped}) {
+      for (Eigen::Index c = 0; c < modes->cols(); ++c) {
+        Eigen::VectorXd shape(n);
+        for (int j = 0; j < n; ++j) shape[j] = (*modes)(j, c) / std::sqrt(mass(j));
+        U.col(column++).head(n) = shape;
+        U.col(column++).tail(n) = shape;
+      }
+    }
+    // Orthonormal, without the directions the two sets share.
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(U);
+    const Eigen::Index rank = std::max<Eigen::Index>(1, qr.rank());
+    return (qr.householderQ() * Eigen::MatrixXd::Identity(size(), U.cols())).leftCols(rank);
+  }
+
+ private:
+  Simulation& sim_;
+  std::vector<Dof> dofs_;
+  double length_ = 1.0;     // m
+  double frequency_ = 1.0;  // rad/s
+  double epsilon_ = 1e-6;
+  int steps_ = 0;
+  Eigen::MatrixXd directions_;  // [size x ...] modalDirections
+};
+
+// The largest |eigenvalue| of the map that takes the columns of X to those of Y, on X's
+// range (Rayleigh-Ritz with the snapshots' own basis): X = Q R, R = U S V^T truncated to the
+// directions above the finite differences' noise, A = (Q U)^T Y V S^-1.
+double ritzRadius(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+  if (X.cols() == 0) return 0.0;
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(X);
+  const Eigen::Index r = std::min(X.rows(), X.cols());
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(X.rows(), r);
+  const Eigen::MatrixXd R = qr.matrixQR().topRows(r).triangularView<Eigen::Upper>();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(R, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  if (!(sigma[0] > 0.0)) return 0.0;
+  Eigen::Index rank = 0;
+  while (rank < sigma.size() && sigma[rank] > 1e-7 * sigma[0]) ++rank;
+  const Eigen::MatrixXd U = Q * svd.matrixU().leftCols(rank);
+  const Eigen::MatrixXd V = svd.matrixV().leftCols(rank);
+  const Eigen::MatrixXd A =
+      U.transpose() * Y * V * sigma.head(rank).cwiseInverse().asDiagonal();
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, false);
+  return eig.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// A fixed pseudo-random direction (the same on every run), largest entry 1.
+Eigen::VectorXd randomDirection(int size, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Eigen::VectorXd u(size);
+  for (int j = 0; j < size; ++j) u[j] = uniform(random);
+  return u / u.cwiseAbs().maxCoeff();
+}
+
+// The k eigenvectors of largest eigenvalue of a symmetric operator of size n, by Lanczos
+// with full reorthogonalisation from a fixed pseudo-random start (columns, unit length).
+template <class Apply>
+Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed) {
+  const int steps = std::min(n, std::max(3 * k, 60));
+  Eigen::MatrixXd basis(n, steps);
+  basis.col(0) = randomDirection(n, seed).normalized();
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(steps, steps);
+  int m = steps;
+  for (int j = 0; j < steps; ++j) {
+    Eigen::VectorXd w = apply(Eigen::VectorXd(basis.col(j)));
+    T(j, j) = basis.col(j).dot(w);
+    for (int pass = 0; pass < 2; ++pass) w -= basis.leftCols(j + 1) * (basis.leftCols(j + 1).transpose() * w);
+    const double b = w.norm();
+    if (j + 1 == steps || b <= 1e-12 * std::max(std::abs(T(j, j)), 1e-300)) {
+      m = j + 1;
+      break;
+    }
+    T(j, j + 1) = T(j + 1, j) = b;
+    basis.col(j + 1) = w / b;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(T.topLeftCorner(m, m));
+  const int kept = std::min(k, m);
+  return basis.leftCols(m) * eig.eigenvectors().rightCols(kept);
+}
+
+StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOptions& o) {
+  StepSpectrum out;
+  const int before = runs.steps();
+  const int n = runs.size();
+  if (n == 0) return out;
+  if (n <= o.denseBelow) {
+    // The whole Jacobian: one two-step run per coordinate; J maps each run's first
+    // difference to its second.
+    const Eigen::MatrixXd base = runs.run(dt, 1, {});
+    Eigen::MatrixXd X(n, n), Y(n, n);
+    for (int j = 0; j < n; ++j) {
+      const Eigen::MatrixXd moved = runs.run(dt, 1, Eigen::VectorXd::Unit(n, j));
+      if (moved.cols() < 2 || base.cols() < 2) {
+        out.radius = INFINITY;
+        out.steps = runs.steps() - before;
+        return out;
+      }
+      X.col(j) = (moved.col(0) - base.col(0)) / runs.epsilon();
+      Y.col(j) = (moved.col(1) - base.col(1)) / runs.epsilon();
+    }
+    out.radius = ritzRadius(X, Y);
+    out.steps = runs.steps() - before;
+    return out;
+  }
+
+  // The modal directions: each one's two-step run against the unperturbed one.
+  const Eigen::MatrixXd& U = runs.directions(o.modes);
+  const Eigen::MatrixXd base = runs.run(dt, 1, {});
+  Eigen::MatrixXd X(n, U.cols()), Y(n, U.cols());
+  for (Eigen::Index j = 0; j < U.cols(); ++j) {
+    const Eigen::MatrixXd moved = runs.run(dt, 1, U.col(j) / U.col(j).cwiseAbs().maxCoeff());
+    if (moved.cols() < 2 || base.cols() < 2) {
+      out.radius = INFINITY;
+      out.steps = runs.steps() - before;
+      return out;
+    }
+    X.col(j) = (moved.col(0) - base.col(0)) / runs.epsilon();
+    Y.col(j) = (moved.col(1) - base.col(1)) / runs.epsilon();
+  }
+  out.radius = ritzRadius(X, Y);
+  out.steps = runs.steps() - before;
+  return out;
+}
+
+}  // namespace
+
+StepSpectrum stepSpectralRadius(Simulation& sim, double dt, const StepStabilityOptions& options) {
+  LinearisedRuns runs(sim, options);
+  return radiusOf(runs, dt, options);
+}
+
+StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const StepStabilityOptions& o) {
+  LinearisedRuns runs(sim, o);
+  StepStabilityLimit out;
+  auto stable = [&](double dt) {
+    ++out.evaluations;
+    return radiusOf(runs, dt, o).radius <= 1.0 + o.radiusSlack;
+  };
+
+  // Bracket: double while stable, halve while unstable.
+  double lo = 0.0, hi = 0.0;
+  if (stable(firstGuess)) {
+    lo = firstGuess;
+    while (hi == 0.0) {
+      if (lo >= o.largestFactor * firstGuess) {
+        out.dt = INFINITY;
+        out.steps = runs.steps();
+        return out;
+      }
+      if (stable(2.0 * lo)) lo *= 2.0; else hi = 2.0 * lo;
+    }
+  } else {
+    hi = firstGuess;
+    while (lo == 0.0) {
+      if (hi <= o.smallestFactor * firstGuess) {
+        out.dt = 0.0;
+        out.steps = runs.steps();
+        return out;
+      }
+      if (stable(0.5 * hi)) lo = 0.5 * hi; else hi *= 0.5;
+    }
+  }
+
+  // Bisect geometrically until the bracket is narrow.
+  while (hi / lo > 1.0 + o.tolerance) {
+    const double mid = std::sqrt(lo * hi);
+    if (stable(mid)) lo = mid; else hi = mid;
+  }
+  out.dt = lo;
+  out.steps = runs.steps();
+  return out;
+}
+
+double stepStableDt(Simulation& sim, const StepStabilityOptions& options) {
+  sim.reset();
+  double w = 0.0;
+  try {
+    w = lanczosEstimate(sim, sim.initialState()).maxAngularFrequency;
+  } catch (const std::exception&) {
+    w = 0.0;
+  }
+  if (!(w > 0.0) || !std::isfinite(w)) w = sim.angularFrequencyBound();
+  const double guess = w > 0.0 && std::isfinite(w) ? 2.0 / w : 1e-3;
+  return stepStabilityLimit(sim, guess, options).dt;
+}
+
+}  // namespace springlab
