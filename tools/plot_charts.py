@@ -316,7 +316,7 @@ def stability(folder):
     ax.grid(True, axis="y", which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
     ax.set_title(f"Stability: {title_of(facts)}\nw_max = {facts['w_max_rad_s']:.4g} rad/s (Lanczos; Gershgorin bound "
-                 f"{facts['gershgorin_rad_s']:.4g}); each trial {facts['duration_s']:.3g} s under the blow-up check",
+                 f"{facts['gershgorin_rad_s']:.4g}); each trial at least {facts['duration_s']:.3g} s under the blow-up check",
                  fontsize=10, pad=24)
     save(fig, folder, "stability")
 

@@ -81,7 +81,8 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
 
   // The table a student reads: measured against predicted.
   std::cout << "w_max = " << study.maxAngularFrequency << " rad/s (Lanczos), Gershgorin bound "
-            << study.gershgorinBound << " rad/s; each trial runs " << study.duration << " s\n";
+            << study.gershgorinBound << " rad/s; each trial runs at least " << study.duration
+            << " s (longer where an instability just past the predicted limit grows slowly)\n";
   std::cout << std::left << std::setw(22) << "integrator" << std::setw(16) << "c / w_max" << std::setw(16)
             << "predicted dt" << std::setw(16) << "measured dt" << "measured/predicted\n";
   for (const studies::CriticalDt& m : study.methods) {

@@ -5,8 +5,6 @@
 #include <random>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/QR>
-#include <Eigen/SVD>
 
 #include "springlab/frequency_estimate.hpp"
 
@@ -42,7 +40,7 @@ double typicalLength(const Simulation& sim) {
 
 Eigen::VectorXd randomDirection(int size, unsigned seed);
 template <class Apply>
-Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed);
+Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed, bool distinctOnly);
 
 // Runs the scene from its initial state, or from it moved by a perturbation, and records
 // the free coordinates after each step, made dimensionless: positions over the typical
@@ -156,8 +154,8 @@ class LinearisedRuns {
         return out;
       };
     };
-    const Eigen::MatrixXd stiff = topEigenvectors(symmetric(false), n, count, 2024);
-    const Eigen::MatrixXd damped = topEigenvectors(symmetric(true), n, count, 2025);
+    const Eigen::MatrixXd stiff = topEigenvectors(symmetric(false), n, count, 2024, false);
+    const Eigen::MatrixXd damped = topEigenvectors(symmetric(true), n, count, 2025, true);
     sim_.stats = stats;
 
     // Mode shapes x = M^-1/2 psi, as displacements and as velocities.
@@ -171,10 +169,15 @@ class LinearisedRuns {
         U.col(column++).tail(n) = shape;
       }
     }
-    // Orthonormal, without the directions the two sets share.
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(U);
-    const Eigen::Index rank = std::max<Eigen::Index>(1, qr.rank());
-    return (qr.householderQ() * Eigen::MatrixXd::Identity(size(), U.cols())).leftCols(rank);
+    // Orthonormal (Gram-Schmidt, twice), without the directions the two sets share.
+    Eigen::Index kept = 0;
+    for (Eigen::Index c = 0; c < U.cols(); ++c) {
+      Eigen::VectorXd v = U.col(c);
+      const double before = v.norm();
+      for (int pass = 0; pass < 2; ++pass) v -= U.leftCols(kept) * (U.leftCols(kept).transpose() * v);
+      if (v.norm() > 1e-8 * before) U.col(kept++) = v.normalized();
+    }
+    return U.leftCols(std::max<Eigen::Index>(1, kept));
   }
 
  private:
@@ -188,23 +191,24 @@ class LinearisedRuns {
 };
 
 // The largest |eigenvalue| of the map that takes the columns of X to those of Y, on X's
-// range (Rayleigh-Ritz with the snapshots' own basis): X = Q R, R = U S V^T truncated to the
-// directions above the finite differences' noise, A = (Q U)^T Y V S^-1.
+// range (Rayleigh-Ritz): with the Gram matrix G = X^T X = W L W^T, the map in the
+// orthonormal basis X W L^-1/2 is L^-1/2 W^T (X^T Y) W L^-1/2. Directions with
+// sqrt(L) below 1e-7 of the largest are dropped: there the differences are round-off (a mode
+// the step all but removes, whose eigenvalue is near 0 and cannot be the largest).
 double ritzRadius(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
   if (X.cols() == 0) return 0.0;
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(X);
-  const Eigen::Index r = std::min(X.rows(), X.cols());
-  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(X.rows(), r);
-  const Eigen::MatrixXd R = qr.matrixQR().topRows(r).triangularView<Eigen::Upper>();
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(R, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
-  if (!(sigma[0] > 0.0)) return 0.0;
-  Eigen::Index rank = 0;
-  while (rank < sigma.size() && sigma[rank] > 1e-7 * sigma[0]) ++rank;
-  const Eigen::MatrixXd U = Q * svd.matrixU().leftCols(rank);
-  const Eigen::MatrixXd V = svd.matrixV().leftCols(rank);
-  const Eigen::MatrixXd A =
-      U.transpose() * Y * V * sigma.head(rank).cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd G = X.transpose() * X;
+  const Eigen::MatrixXd H = X.transpose() * Y;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(G);
+  const Eigen::VectorXd& l = gram.eigenvalues();  // ascending
+  const double largest = l[l.size() - 1];
+  if (!(largest > 0.0)) return 0.0;
+  Eigen::Index first = 0;
+  while (first < l.size() && !(l[first] > 1e-14 * largest)) ++first;
+  const Eigen::Index rank = l.size() - first;
+  const Eigen::MatrixXd B =
+      gram.eigenvectors().rightCols(rank) * l.tail(rank).cwiseSqrt().cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd A = B.transpose() * H * B;
   const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, false);
   return eig.eigenvalues().cwiseAbs().maxCoeff();
 }
@@ -221,7 +225,7 @@ Eigen::VectorXd randomDirection(int size, unsigned seed) {
 // The k eigenvectors of largest eigenvalue of a symmetric operator of size n, by Lanczos
 // with full reorthogonalisation from a fixed pseudo-random start (columns, unit length).
 template <class Apply>
-Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed) {
+Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed, bool distinctOnly) {
   const int steps = std::min(n, std::max(3 * k, 60));
   Eigen::MatrixXd basis(n, steps);
   basis.col(0) = randomDirection(n, seed).normalized();
@@ -240,7 +244,12 @@ Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed)
     basis.col(j + 1) = w / b;
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(T.topLeftCorner(m, m));
-  const int kept = std::min(k, m);
+  // distinctOnly: only eigenvalues well above the smallest. Damping that is the same on
+  // every mass (air friction alone) has no preferred vectors, and arbitrary ones would spoil
+  // the subspace the stiffness picked.
+  const Eigen::VectorXd& values = eig.eigenvalues();  // ascending
+  int kept = 0;
+  while (kept < std::min(k, m) && (!distinctOnly || values[m - 1 - kept] > 1.5 * std::max(values[0], 0.0))) ++kept;
   return basis.leftCols(m) * eig.eigenvectors().rightCols(kept);
 }
 

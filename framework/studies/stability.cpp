@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "springlab/step_stability.hpp"
 #include "springlab/studies/parallel.hpp"
 
 namespace springlab::studies {
@@ -27,6 +28,20 @@ std::optional<bool> survives(const Registry& registry, const SceneDocument& scen
 
 double defaultStabilityDuration(double maxAngularFrequency) {
   return maxAngularFrequency > 0.0 ? 300.0 * 2.0 * std::numbers::pi / maxAngularFrequency : 1.0;
+}
+
+// Long enough for an instability just past the predicted limit to show: at 1.03 times the
+// limit the linearised step grows a mode by its spectral radius per step; the trial lasts
+// until that is 1e20 (46 e-foldings: from round-off to a visible motion), at least `atLeast`.
+double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                      double predicted, double atLeast) {
+  if (!(std::isfinite(predicted) && predicted > 0.0)) return atLeast;
+  LoadedScene loaded = registry.loadScene(scene);
+  loaded.sim->setIntegrator(registry.makeIntegrator(integrator));
+  const double dt = 1.03 * predicted;
+  const double radius = stepSpectralRadius(*loaded.sim, dt).radius;
+  if (!(radius > 1.0)) return atLeast;
+  return std::max(atLeast, std::log(1e20) / std::log(radius) * dt);
 }
 
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
@@ -98,8 +113,10 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
       const double guess = std::isfinite(predicted) && predicted > 0.0 ? predicted
                            : w > 0.0 ? (std::isinf(predicted) ? 100.0 / w : 2.0 / w)
                                      : 0.01;
-      results[i] = criticalDt(registry, scene, names[i], study.duration, guess, o.tolerance, o.maxSteps);
+      const double duration = o.duration > 0.0 ? o.duration : stabilityTrialDuration(registry, scene, names[i], predicted, study.duration);
+      results[i] = criticalDt(registry, scene, names[i], duration, guess, o.tolerance, o.maxSteps);
       results[i].predicted = predicted;
+      results[i].duration = duration;
     } catch (const NotImplemented& e) {
       missing[i] = e.what();
       return;
@@ -163,7 +180,7 @@ void writeCsv(const Stability& study, const std::string& path) {
     const bool finite = std::isfinite(m.predicted) && m.predicted > 0.0;
     out << m.integrator << ',' << m.stabilityConstant << ',' << study.maxAngularFrequency << ','
         << study.gershgorinBound << ',' << m.undamped << ',' << m.predicted << ',' << m.measured << ','
-        << (finite ? m.measured / m.predicted : 0.0) << ',' << study.duration << '\n';
+        << (finite ? m.measured / m.predicted : 0.0) << ',' << m.duration << '\n';
   }
   if (!out) throw std::runtime_error(path + ": writing the CSV file failed");
 }

@@ -15,7 +15,9 @@ namespace springlab::studies {
 
 struct StabilityOptions {
   std::vector<std::string> integrators;  // empty: every registered integrator
-  double duration = 0.0;     // s of simulated time per trial; 0: 300 periods of the stiffest mode
+  double duration = 0.0;     // s of simulated time per trial; 0: 300 periods of the stiffest mode, or
+                             // longer, until a mode growing as the step does at 1.03 x the
+                             // predicted limit has grown by 1e20
   double tolerance = 0.005;  // relative width of the final bracket
   long maxSteps = 4000000;   // a trial needing more steps is not run (the bracket stops there)
   int threads = 0;
@@ -30,6 +32,7 @@ struct CriticalDt {
   double undamped = 0.0;           // s, c / w_max; 0 when the method has no undamped limit
   double predicted = 0.0;          // s, stepStableDt: 0 no stable dt, +inf no limit
   double measured = 0.0;           // s
+  double duration = 0.0;           // s of simulated time per trial
   int trials = 0;
 };
 
@@ -44,6 +47,12 @@ struct Stability {
 
 // The default trial duration of a scene: 300 periods of its stiffest mode.
 double defaultStabilityDuration(double maxAngularFrequency);
+
+// The trial time of one method: at least `atLeast`, and long enough for a mode that grows as
+// the linearised step does at 1.03 x the predicted limit to grow by 1e20 (from round-off to
+// a motion the blow-up check sees).
+double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                              double predicted, double atLeast);
 
 // Largest stable dt of one integrator, bisection from a first guess.
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
