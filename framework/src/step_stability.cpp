@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include <Eigen/Eigenvalues>
@@ -79,6 +80,13 @@ class LinearisedRuns {
         s.vel[dofs_[j].mass][dofs_[j].axis] += epsilon_ * length_ * frequency_ * direction[n + j];
       }
     }
+    return runFromCurrent(dt, count);
+  }
+
+  // Steps from the current state (the integrator's history forgotten), as run() records them.
+  Eigen::MatrixXd runFromCurrent(double dt, int count = 0) {
+    State& s = sim_.state;
+    const int n = static_cast<int>(dofs_.size());
     sim_.integrator().reset();
     const bool checked = sim_.blowUpCheckEnabled();
     sim_.setBlowUpCheck(false);
@@ -108,6 +116,32 @@ class LinearisedRuns {
   }
 
   double epsilon() const { return epsilon_; }
+
+  // Whether the integrator keeps no history between steps: two steps from the initial state
+  // land where one step, a reset and a step from its result land. Then the map is probed one
+  // step from the initial state itself (the Jacobian there, even when the scene moves);
+  // otherwise by the second step of two (d_2 = J d_1 after the history has formed).
+  bool historyFree(double dt) {
+    if (historyFree_) return *historyFree_;
+    const Eigen::MatrixXd twoSteps = run(dt, 1, {});
+    const Eigen::MatrixXd oneStep = run(dt, 0, {});
+    bool same = twoSteps.cols() == 2 && oneStep.cols() == 1;
+    if (same) {
+      sim_.reset();
+      State& s = sim_.state;
+      const int n = static_cast<int>(dofs_.size());
+      for (int j = 0; j < n; ++j) {
+        s.pos[dofs_[j].mass][dofs_[j].axis] = oneStep(j, 0) * length_;
+        s.vel[dofs_[j].mass][dofs_[j].axis] = oneStep(n + j, 0) * length_ * frequency_;
+      }
+      s.time += dt;
+      const Eigen::MatrixXd again = runFromCurrent(dt);
+      same = again.cols() == 1 && (again.col(0) - twoSteps.col(1)).cwiseAbs().maxCoeff() <=
+                                      1e-12 * std::max(1.0, twoSteps.col(1).cwiseAbs().maxCoeff());
+    }
+    historyFree_ = same;
+    return same;
+  }
 
   // modalDirections(count), computed once.
   const Eigen::MatrixXd& directions(int count) {
@@ -188,6 +222,7 @@ class LinearisedRuns {
   double epsilon_ = 1e-6;
   int steps_ = 0;
   Eigen::MatrixXd directions_;  // [size x ...] modalDirections
+  std::optional<bool> historyFree_;
 };
 
 // The largest |eigenvalue| of the map that takes the columns of X to those of Y, on X's
@@ -261,17 +296,19 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   if (n <= o.denseBelow) {
     // The whole Jacobian: one two-step run per coordinate; J maps each run's first
     // difference to its second.
-    const Eigen::MatrixXd base = runs.run(dt, 1, {});
+    const bool oneStep = runs.historyFree(dt);
+    const Eigen::MatrixXd base = runs.run(dt, oneStep ? 0 : 1, {});
     Eigen::MatrixXd X(n, n), Y(n, n);
     for (int j = 0; j < n; ++j) {
-      const Eigen::MatrixXd moved = runs.run(dt, 1, Eigen::VectorXd::Unit(n, j));
-      if (moved.cols() < 2 || base.cols() < 2) {
+      const Eigen::VectorXd u = Eigen::VectorXd::Unit(n, j);
+      const Eigen::MatrixXd moved = runs.run(dt, oneStep ? 0 : 1, u);
+      if (moved.cols() < base.cols() || base.cols() < (oneStep ? 1 : 2)) {
         out.radius = INFINITY;
         out.steps = runs.steps() - before;
         return out;
       }
-      X.col(j) = (moved.col(0) - base.col(0)) / runs.epsilon();
-      Y.col(j) = (moved.col(1) - base.col(1)) / runs.epsilon();
+      X.col(j) = oneStep ? u : Eigen::VectorXd((moved.col(0) - base.col(0)) / runs.epsilon());
+      Y.col(j) = (moved.col(oneStep ? 0 : 1) - base.col(oneStep ? 0 : 1)) / runs.epsilon();
     }
     out.radius = ritzRadius(X, Y);
     out.steps = runs.steps() - before;
@@ -280,17 +317,19 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
 
   // The modal directions: each one's two-step run against the unperturbed one.
   const Eigen::MatrixXd& U = runs.directions(o.modes);
-  const Eigen::MatrixXd base = runs.run(dt, 1, {});
+  const bool oneStep = runs.historyFree(dt);
+  const Eigen::MatrixXd base = runs.run(dt, oneStep ? 0 : 1, {});
   Eigen::MatrixXd X(n, U.cols()), Y(n, U.cols());
   for (Eigen::Index j = 0; j < U.cols(); ++j) {
-    const Eigen::MatrixXd moved = runs.run(dt, 1, U.col(j) / U.col(j).cwiseAbs().maxCoeff());
-    if (moved.cols() < 2 || base.cols() < 2) {
+    const Eigen::VectorXd u = U.col(j) / U.col(j).cwiseAbs().maxCoeff();
+    const Eigen::MatrixXd moved = runs.run(dt, oneStep ? 0 : 1, u);
+    if (moved.cols() < base.cols() || base.cols() < (oneStep ? 1 : 2)) {
       out.radius = INFINITY;
       out.steps = runs.steps() - before;
       return out;
     }
-    X.col(j) = (moved.col(0) - base.col(0)) / runs.epsilon();
-    Y.col(j) = (moved.col(1) - base.col(1)) / runs.epsilon();
+    X.col(j) = oneStep ? u : Eigen::VectorXd((moved.col(0) - base.col(0)) / runs.epsilon());
+    Y.col(j) = (moved.col(oneStep ? 0 : 1) - base.col(oneStep ? 0 : 1)) / runs.epsilon();
   }
   out.radius = ritzRadius(X, Y);
   out.steps = runs.steps() - before;

@@ -37,7 +37,7 @@ namespace springlab {
 
 struct StepStabilityOptions {
   int modes = 8;                 // stiffest and most damped modes each: 4 x modes runs per dt
-  int denseBelow = 600;          // build the whole Jacobian when the free coordinates (positions
+  int denseBelow = 100;          // build the whole Jacobian when the free coordinates (positions
                                  // and velocities) number at most this
   double relativePerturbation = 1e-6;  // of the scene's typical length (and length x w_max for velocities)
   double radiusSlack = 1e-6;     // a spectral radius above 1 + this is unstable (the finite
