@@ -50,7 +50,7 @@ double defaultStabilityDuration(double maxAngularFrequency);
 
 // The trial time of one method: at least `atLeast`, and long enough for a mode that grows as
 // the linearised step does at 1.03 x the predicted limit to grow by 1e20 (from round-off to
-// a motion the blow-up check sees).
+// a motion the blow-up check sees), at most 100 x atLeast.
 double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                               double predicted, double atLeast);
 
