@@ -293,30 +293,9 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   const int before = runs.steps();
   const int n = runs.size();
   if (n == 0) return out;
-  if (n <= o.denseBelow) {
-    // The whole Jacobian: one two-step run per coordinate; J maps each run's first
-    // difference to its second.
-    const bool oneStep = runs.historyFree(dt);
-    const Eigen::MatrixXd base = runs.run(dt, oneStep ? 0 : 1, {});
-    Eigen::MatrixXd X(n, n), Y(n, n);
-    for (int j = 0; j < n; ++j) {
-      const Eigen::VectorXd u = Eigen::VectorXd::Unit(n, j);
-      const Eigen::MatrixXd moved = runs.run(dt, oneStep ? 0 : 1, u);
-      if (moved.cols() < base.cols() || base.cols() < (oneStep ? 1 : 2)) {
-        out.radius = INFINITY;
-        out.steps = runs.steps() - before;
-        return out;
-      }
-      X.col(j) = oneStep ? u : Eigen::VectorXd((moved.col(0) - base.col(0)) / runs.epsilon());
-      Y.col(j) = (moved.col(oneStep ? 0 : 1) - base.col(oneStep ? 0 : 1)) / runs.epsilon();
-    }
-    out.radius = ritzRadius(X, Y);
-    out.steps = runs.steps() - before;
-    return out;
-  }
-
-  // The modal directions: each one's two-step run against the unperturbed one.
-  const Eigen::MatrixXd& U = runs.directions(o.modes);
+  // Every coordinate (a small system: the whole Jacobian) or the modal directions; for each,
+  // its run against the unperturbed one.
+  const Eigen::MatrixXd U = n <= o.denseBelow ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n)) : runs.directions(o.modes);
   const bool oneStep = runs.historyFree(dt);
   const Eigen::MatrixXd base = runs.run(dt, oneStep ? 0 : 1, {});
   Eigen::MatrixXd X(n, U.cols()), Y(n, U.cols());

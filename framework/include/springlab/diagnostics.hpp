@@ -42,7 +42,8 @@ class BlowUp : public std::runtime_error {
 // could ever hold (its initial energy plus the work gravity can do: the runaway factor); and
 // passivity: a scene that puts no energy in (no wind, pump, moving pinned mass or user drag)
 // cannot gain energy, so a total energy (gravity included) above the highest it had while
-// energy came in, by more than kPassivityFraction of the energy scale, is a blow-up. Past the
+// energy came in, by more than kPassivityFraction of the energy scale for kPassivitySteps
+// checks in a row, is a blow-up. Past the
 // stability limit a nonlinear scene often saturates instead of overflowing (springs flip, the
 // state turns to noise at a bounded energy): passivity catches that. The margin covers the
 // integrator's own energy oscillation (symplectic Euler's true energy swings about its
@@ -53,6 +54,9 @@ class BlowUpCheck {
   static constexpr double kRunawayFactor = 100.0;
   // Rise of a passive scene's total energy, in energy scales, that counts as a blow-up.
   static constexpr double kPassivityFraction = 0.5;
+  // Checks in a row the rise must last (the energy of a stable symplectic step swings above
+  // and back within a few steps, however close to its limit).
+  static constexpr int kPassivitySteps = 64;
 
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
   // The user put energy in (dragged, pinned): never count that as a blow-up.
@@ -80,6 +84,7 @@ class BlowUpCheck {
   // J, the highest total energy (gravity included) the scene reached while energy came in;
   // a passive scene may not rise above it by more than kPassivityFraction x energyScale_.
   double passiveCeiling_ = 0.0;
+  int passiveExcess_ = 0;  // checks in a row above the ceiling
   // The state at the last check that passed (or at arm()): where the forces are evaluated
   // again when the state turns non-finite.
   State last_;
