@@ -72,7 +72,7 @@ class Simulation {
 
   // ---- data: changes every step -----------------------------------------------------
   State state;                   // positions [n], velocities [n], time
-  std::vector<Vec3> force;       // [n] N, forces of the last solve()
+  std::vector<Vec3> force;       // [n] N, the forces solve() or a step's integrator last wrote
   Stats stats;
   SolverSettings solver;         // how hard implicit integrators solve (scene's "solver")
   PhaseProfile profile;          // where the steps' time goes, when enabled (sim --profile, benchmarks)

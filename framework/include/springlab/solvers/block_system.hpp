@@ -13,7 +13,7 @@
 
 namespace springlab {
 
-class SpringBatches;  // the pairs split for threads (internal: src/fast/spring_batches.hpp)
+class SpringBatches;  // the pairs split for threads (the framework's internal src/fast/)
 
 // ---- The linear system of one implicit step ------------------------------------------
 // A = M - dt dF/dv - dt^2 dF/dx and b over the free masses, in 3x3 blocks: one block per
