@@ -13,7 +13,7 @@ double springGershgorinBound(const Simulation& sim) {
   // Row sums of M^-1 K for the springs (Gershgorin): each spring adds k to both ends' rows
   // twice (diagonal and off-diagonal), so a free mass with springs k_j has |row| = 2 sum k_j.
   std::vector<double> rowSum(sim.masses.size(), 0.0);
-  for (const Spring& s : sim.springs) {
+  for (const Spring& s : sim.springs()) {
     rowSum[s.mass1] += 2.0 * s.springConstant;
     rowSum[s.mass2] += 2.0 * s.springConstant;
   }
@@ -40,7 +40,7 @@ double explicitEulerDampedStableDt(double beta, double maxAngularFrequency) {
 
 double springDampingRatio(const Simulation& sim) {
   double beta = INFINITY;
-  for (const Spring& s : sim.springs) {
+  for (const Spring& s : sim.springs()) {
     if (s.springConstant > 0.0) beta = std::min(beta, s.frictionConstant / s.springConstant);
   }
   return std::isfinite(beta) ? beta : 0.0;
@@ -60,7 +60,7 @@ void BlowUpCheck::arm(const Simulation& sim) {
     }
     extent = (hi - lo).norm();
   }
-  for (const Spring& s : sim.springs) extent += s.springLength;
+  for (const Spring& s : sim.springs()) extent += s.springLength;
   for (const Mass& m : sim.masses) totalMass += m.m;
   energyScale_ = std::abs(e.kinetic) + std::abs(e.elastic) + std::abs(e.other) +
                  totalMass * (sim.gravitation.norm() * extent + 1.0);
@@ -126,15 +126,15 @@ std::string BlowUpCheck::blameForces(Simulation& sim) {
   sim.muteForceTerm(-1);
 
   // Which term: take the springs away (k = 0 would not do: 0 times a 0/0 direction is still
-  // NaN), then gravity too, and see whether mass `bad` turns finite. Labs read the spring list
-  // at every evaluation (a cache keyed on its size is rebuilt), and both come back below.
+  // NaN), then gravity too, and see whether mass `bad` turns finite. Both come back below
+  // (swapSprings lets the lab derive again what it keeps from the springs).
   std::vector<Spring> springs;
-  springs.swap(sim.springs);
+  sim.swapSprings(springs);
   const Vec3 gravity = sim.gravitation;
   const bool withoutSprings = forcesAtLast() && finite(f[static_cast<std::size_t>(bad)]);
   sim.gravitation = Vec3::Zero();
   const bool withoutGravity = !withoutSprings && forcesAtLast() && finite(f[static_cast<std::size_t>(bad)]);
-  sim.springs.swap(springs);
+  sim.swapSprings(springs);
   sim.gravitation = gravity;
   sim.stats = stats;
 
@@ -149,8 +149,8 @@ std::string BlowUpCheck::blameForces(Simulation& sim) {
   }
   if (withoutSprings) {
     // What the framework can see: a spring at that mass with coincident ends or bad parameters.
-    for (std::size_t j = 0; j < sim.springs.size(); ++j) {
-      const Spring& s = sim.springs[j];
+    for (std::size_t j = 0; j < sim.springs().size(); ++j) {
+      const Spring& s = sim.springs()[j];
       if (s.mass1 != bad && s.mass2 != bad) continue;
       const double length = (last_.pos[static_cast<std::size_t>(s.mass1)] - last_.pos[static_cast<std::size_t>(s.mass2)]).norm();
       if (length == 0.0) {

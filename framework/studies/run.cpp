@@ -15,7 +15,7 @@ namespace {
 void scaleSprings(Simulation& sim, double factor) {
   if (factor == 1.0) return;
   sim.editModel([factor](Simulation& model) {
-    for (Spring& s : model.springs) s.springConstant *= factor;
+    for (Spring& s : model.editSprings()) s.springConstant *= factor;
   });
 }
 

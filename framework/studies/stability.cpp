@@ -120,7 +120,7 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
   LoadedScene loaded = registry.loadScene(scene);
   map.integrator = o.integrator.empty() ? loaded.settings.integrator : o.integrator;
   map.stabilityConstant = stabilityConstant(registry, map.integrator);
-  map.springConstant = loaded.sim->springs.empty() ? 0.0 : loaded.sim->springs.front().springConstant;
+  map.springConstant = loaded.sim->springs().empty() ? 0.0 : loaded.sim->springs().front().springConstant;
   map.scales = o.stiffnessScales;
   if (map.scales.empty()) {
     for (int k = -6; k <= 6; ++k) map.scales.push_back(std::pow(10.0, k / 3.0));

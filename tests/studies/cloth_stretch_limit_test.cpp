@@ -24,7 +24,7 @@ constexpr double kLimitPlusOnePercent = 0.11;  // both scenes limit springs to 1
 
 double largestStructuralStrain(const Simulation& sim) {
   double strain = 0.0;
-  for (const Spring& s : sim.springs) {
+  for (const Spring& s : sim.springs()) {
     if (s.kind != SpringKind::Structural) continue;
     strain = std::max(strain, (sim.state.pos[s.mass1] - sim.state.pos[s.mass2]).norm() / s.springLength - 1.0);
   }

@@ -255,7 +255,7 @@ void Renderer::drawShadow(const Simulation& sim, float height, const glm::mat4& 
   };
   std::vector<Vertex>& lines = scratch_[0];
   lines.clear();
-  for (const Spring& s : sim.springs) {
+  for (const Spring& s : sim.springs()) {
     if (s.mass1 < 0 || s.mass2 < 0 || static_cast<std::size_t>(std::max(s.mass1, s.mass2)) >= pos.size()) continue;
     lines.push_back({flat(s.mass1), shade, {}});
     lines.push_back({flat(s.mass2), shade, {}});
@@ -309,7 +309,7 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
   if (options.springs) {
     std::vector<Vertex>& lines = scratch_[0];
     lines.clear();
-    for (const Spring& s : sim.springs) {
+    for (const Spring& s : sim.springs()) {
       if (!valid(s.mass1) || !valid(s.mass2)) continue;
       const glm::vec3 c = options.springsByKind ? springKindColor(s.kind)
                                                 : 0.5f * (massColors[s.mass1] + massColors[s.mass2]);
