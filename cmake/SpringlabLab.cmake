@@ -48,16 +48,23 @@ function(springlab_read_manifests)
 endfunction()
 
 # springlab_exercise_files(OUT LAB TREE): the paths of lab LAB's exercise files in TREE (labs or
-# solutions), as its manifest lists them; a listed file that is missing stops the configure.
+# solutions), as its manifest lists them; with TREE = tests, their public test files, named after
+# them (wind.cpp: tests/<dir>/public/wind_test.cpp). A listed file that is missing stops the
+# configure, naming it and the manifest.
 function(springlab_exercise_files out lab tree)
+  set(dir ${SPRINGLAB_LAB_${lab}_DIR})
   set(paths "")
   foreach(file IN LISTS SPRINGLAB_LAB_${lab}_FILES)
-    set(path ${CMAKE_SOURCE_DIR}/${tree}/${SPRINGLAB_LAB_${lab}_DIR}/${file})
-    if(NOT EXISTS ${path})
-      message(FATAL_ERROR "${tree}/${SPRINGLAB_LAB_${lab}_DIR}/${file}: missing, but "
-              "tests/${SPRINGLAB_LAB_${lab}_DIR}/exercises.json lists it as an exercise's file")
+    set(path ${tree}/${dir}/${file})
+    if(tree STREQUAL "tests")
+      string(REGEX REPLACE "[.]cpp$" "_test.cpp" test ${file})
+      set(path tests/${dir}/public/${test})
     endif()
-    list(APPEND paths ${path})
+    if(NOT EXISTS ${CMAKE_SOURCE_DIR}/${path})
+      message(FATAL_ERROR "${path}: missing, but tests/${dir}/exercises.json lists ${file} as an exercise's "
+              "file (its public tests live in tests/${dir}/public/<file>_test.cpp)")
+    endif()
+    list(APPEND paths ${CMAKE_SOURCE_DIR}/${path})
   endforeach()
   set(${out} ${paths} PARENT_SCOPE)
 endfunction()
