@@ -27,7 +27,7 @@ def main():
     ap = argparse.ArgumentParser(prog="springlab autograder", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out", help="the bundle to write, e.g. autograder.zip")
-    ap.add_argument("--lab", help="grade this lab only (rope or 01_rope): one Gradescope assignment per lab")
+    ap.add_argument("--lab", help="grade this lab only (its id: rope): one Gradescope assignment per lab")
     args = ap.parse_args()
     if not (ROOT / "solutions").is_dir():
         print("springlab autograder: this tree has no solutions/: bundle the instructor tree", file=sys.stderr)

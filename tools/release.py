@@ -34,11 +34,11 @@ INSTRUCTOR_ONLY = [
     "tools/seed_sweep.py",             # sweeps the reference's grading program over seeds
     # The grader's instructor side: building, cheat checks, submissions, the bundle. A student's
     # `check` needs only the manifest, sandbox, launch (judged_run: `check` starts each test as
-    # `grade` starts a worker), test runner, results and reports modules.
+    # `grade` starts a worker), test runner, results and reports modules, and the labs module
+    # (with its errors), which the `springlab` script reads the labs through (tools/lab_table.py).
     "tools/springlab_grader/build_cache.py", "tools/springlab_grader/integrity.py",
     "tools/springlab_grader/lab_grader.py", "tools/springlab_grader/submission.py",
-    "tools/springlab_grader/gradescope.py", "tools/springlab_grader/labs.py",
-    "tools/springlab_grader/errors.py",
+    "tools/springlab_grader/gradescope.py",
     "tools/springlab_grader/README.md",  # how the instructor's grader works, for instructors
     # The judge and worker of graded tests (the call trace between them) and their generator.
     "tools/make_call_layer.py", "tests/support/call_trace*", "tests/support/judge_main.cpp",

@@ -29,8 +29,8 @@ preferably under labs/ (so a whole repository, with or without tests/, works); f
 files go to --lab, else to the lab whose skeleton has those file names. A lab with no files
 is reported as not submitted.
 
-Labs are discovered from CMakeLists.txt (`springlab_add_lab(NAME rope DIR 01_rope)`) with their
-manifest tests/<dir>/exercises.json; nothing here knows a particular lab.
+Labs are their manifests, tests/NN_<id>/exercises.json (tools/springlab_grader/labs.py);
+nothing here knows a particular lab.
 
 Files the student did not submit are taken from the released skeleton (labs/<dir>/) and the
 report says so. A file that includes the instructor's files (solutions/, hidden tests), calls
@@ -64,7 +64,7 @@ def common_options(ap):
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="processes at once (default: cores)")
     ap.add_argument("--timeout", type=float, default=TIMEOUT, help="seconds per test")
     ap.add_argument("--memory-limit-mb", type=int, default=4096, help="address space per test; 0 = none")
-    ap.add_argument("--lab", help="grade this lab only (rope or 01_rope): one assignment per lab; flat exercise "
+    ap.add_argument("--lab", help="grade this lab only (its id: rope): one assignment per lab; flat exercise "
                                   "files are taken as this lab's")
     ap.add_argument("--budget-factor", type=float, default=BUDGET_FACTOR,
                     help=f"a lab's tests may run this many times the reference's own time, plus the floor "

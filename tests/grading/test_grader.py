@@ -342,34 +342,19 @@ class ObjectCacheChecksItsEntries(Temp):
         self.assertIsNone(cache.fetch("k", out, "a.cpp"))
         self.assertIsNone(cache.fetch("missing", out, "a.cpp"))
 
-class CallLayerFromTheHeader(Temp):
+class CallLayerFromTheManifest(Temp):
     """tools/make_call_layer.py: the worker's record and forward files and the judge's replay
-    files follow the exercise header, one function per name, each in one exercise file."""
-    HEADER = """#pragma once
-namespace springlab::toy {
-// a comment with a call(x);
-struct Hit {
-  bool touching = false;
-  Vec3 normal = Vec3::UnitY();  // unit
-};
-enum class Side { Left, Right };
-Hit probe(const Vec3& x, double radius);
-void smooth(std::vector<Vec3>& pos, const std::vector<std::pair<int, int>>& pairs, int passes);
-int helperTheGivenCodeDefines(int n);
-}  // namespace springlab::toy
-"""
+    files follow the manifest's exercise files and declarations, one function per name."""
+    MANIFEST = {"lab": "toy", "values": {"Hit": ["touching", "normal"]}, "exercises": [
+        {"id": "9.1", "file": "probe.cpp", "functions": ["Hit probe(const Vec3& x, double radius)"]},
+        {"id": "9.2", "file": "smooth.cpp", "functions": [
+            "void smooth(std::vector<Vec3>& pos, const std::vector<std::pair<int, int>>& pairs, int passes)"]}]}
 
-    def generate(self, header=HEADER, files=None):
+    def generate(self, manifest=None):
         sys.path.insert(0, str(ROOT / "tools"))
         import make_call_layer  # noqa: PLC0415
-        solutions = self.tmp / "solutions"
-        solutions.mkdir(exist_ok=True)
-        for name, text in (files or {"probe.cpp": "Hit probe(const Vec3& x, double radius) {\n  return {};\n}\n",
-                                     "smooth.cpp": "void smooth(std::vector<Vec3>& pos, const std::vector<std::pair"
-                                                   "<int, int>>& pairs, int passes) {\n  smooth(pos, pairs, 0);\n}\n"}).items():
-            (solutions / name).write_text(text)
-        (self.tmp / "exercises.hpp").write_text(header)
-        make_call_layer.generate("toy", self.tmp / "exercises.hpp", solutions, self.tmp / "out")
+        path = self.manifest(manifest or self.MANIFEST)
+        make_call_layer.generate(path, self.tmp / "out")
         return self.tmp / "out"
 
     def test_functions_by_file(self):
@@ -387,25 +372,27 @@ int helperTheGivenCodeDefines(int n);
         self.assertIn('trace::replayCall(1u, "smooth")', replay)
         self.assertIn("get(r, pos);", replay)
 
-    def test_lab_types_get_values_and_casts(self):
+    def test_values_bind_every_field_and_forward_reads_the_same_layout(self):
         out = self.generate()
         values = (out / "values.hpp").read_text()
         self.assertIn("put(w, v.touching);", values)
         self.assertIn("put(w, v.normal);", values)
+        self.assertIn("auto& [field0, field1] = v;", values)  # another field count does not compile
         forward = (out / "probe.forward.cpp").read_text()
         self.assertIn("namespace springlab::toy_reference", forward)
-        self.assertIn("reinterpret_cast<Hit*>(&result)", forward)
+        self.assertIn("forwardCall<Hit>(&::springlab::toy::student_probe, x, radius)", forward)
 
-    def test_overloads_are_refused(self):
-        header = self.HEADER.replace("int helperTheGivenCodeDefines(int n);", "Hit probe(const Vec3& x);")
-        with self.assertRaisesRegex(SystemExit, "overloaded exercise functions \\(probe\\)"):
-            self.generate(header)
+    def test_a_function_declared_twice_is_refused(self):
+        manifest = json.loads(json.dumps(self.MANIFEST))
+        manifest["exercises"][1]["functions"].append("Hit probe(const Vec3& x)")
+        with self.assertRaisesRegex(SystemExit, "declared twice \\(probe\\)"):
+            self.generate(manifest)
 
-    def test_a_function_in_two_files_is_refused(self):
-        files = {"probe.cpp": "Hit probe(const Vec3& x, double radius) {\n  return {};\n}\n",
-                 "copy.cpp": "Hit probe(const Vec3& x, double radius) {\n  return {};\n}\n"}
-        with self.assertRaisesRegex(SystemExit, "probe is defined in 2 files"):
-            self.generate(files=files)
+    def test_a_malformed_declaration_names_file_and_field(self):
+        manifest = json.loads(json.dumps(self.MANIFEST))
+        manifest["exercises"][0]["functions"] = ["probe"]
+        with self.assertRaisesRegex(SystemExit, r"exercises.json: exercises\[0\]\.functions: `probe` is not a declaration"):
+            self.generate(manifest)
 
 
 class JudgedOutcomes(unittest.TestCase):

@@ -5,7 +5,8 @@ and tools/autograder.py):
 
     errors        GradeError: bad input or a broken instructor tree
     manifest      a lab's tests/<dir>/exercises.json (points, visibility) and its handout
-    labs          the labs of this tree (CMakeLists.txt) with their manifests
+    labs          the labs of this tree: one manifest each (tests/<dir>/exercises.json)
+    failures      what a failed or crashed test says: signal names, GoogleTest's text cleaned
     sandbox       limits, user and process group of one untrusted process
     gtest_runner  listing and running a grading program's tests, the private result channel
     results       what grading found: per test, per lab, per submission

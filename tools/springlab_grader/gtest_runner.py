@@ -13,11 +13,12 @@ import os
 import pathlib
 import random
 import re
-import signal
 import tempfile
 import threading
 import time
 
+from .failures import clean, crash_signal, signal_name
+from .judged_run import kill_user, launch_worker, outcome_of, read_tail, run_judged, wait_until, worker_uid
 from .manifest import ManifestError
 from .results import TestResult
 from .sandbox import read_until_closed, run_sandboxed, tail
@@ -33,7 +34,6 @@ class Outcome:
 def run_test(binary, name, seed, sandbox, slot=0, seccomp=None):
     """Run one GoogleTest test alone, launched as a worker is; trust only the report on the
     channel (one JSON object, written after the test returned)."""
-    from .judged_run import crash_signal, launch_worker, read_tail, wait_until
     start = time.monotonic()
     with tempfile.TemporaryFile() as log:
         launch = launch_worker(binary, name, sandbox, {"SPRINGLAB_SEED": str(seed)}, log, slot=slot, seccomp=seccomp)
@@ -66,26 +66,6 @@ def run_test(binary, name, seed, sandbox, slot=0, seccomp=None):
     if status == "skipped":
         return Outcome(False, "skipped: a skipped test earns no points", seconds)
     return Outcome(False, f"the test passed but its process then exited with code {code}", seconds)
-
-
-def signal_name(number):
-    names = {signal.SIGSEGV: "segmentation fault (SIGSEGV): an invalid memory access, or a stack overflow from "
-                             "too deep a recursion",
-             signal.SIGABRT: "aborted (SIGABRT): abort(), a failed assert, or an exception nobody caught",
-             signal.SIGFPE: "arithmetic error (SIGFPE), e.g. an integer division by zero",
-             signal.SIGKILL: "killed (SIGKILL): the memory or CPU time limit",
-             signal.SIGXCPU: "CPU time limit exceeded (SIGXCPU)",
-             signal.SIGXFSZ: "wrote more output than allowed (SIGXFSZ)",
-             signal.SIGBUS: "bus error (SIGBUS): an invalid memory access"}
-    return names.get(number, f"signal {number}")
-
-
-def clean(failure):
-    # Drop the source location line GoogleTest puts first; students want the physics.
-    lines = failure.splitlines()
-    if lines and re.match(r"^\S+:\d+$", lines[0]):
-        lines = lines[1:]
-    return "\n".join(lines)
 
 
 # GoogleTest's own lines that print compared values; in a hidden test those may be the
@@ -230,7 +210,6 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         results = list(pool.map(one, todo))
     if todo and os.geteuid() == 0:
-        from .judged_run import kill_user, worker_uid
         kill_user(worker_uid(slot))
     return results
 
@@ -238,7 +217,6 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
 def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget=None, slot=0, seccomp=None):
     """Run the manifest's tests `only` as judge and worker pairs (judged_run.py); results in
     manifest order. The judge holds every test of the lab (hidden ones too)."""
-    from .judged_run import kill_user, outcome_of, run_judged, worker_uid
     todo = [(ex, t) for ex in manifest["exercises"] for t in ex["tests"] if only is None or t["name"] in only]
 
     def one(item):

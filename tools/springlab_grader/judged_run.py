@@ -18,6 +18,7 @@ import tempfile
 import threading
 import time
 
+from .failures import clean, crash_signal, signal_name
 from .sandbox import Sandbox, read_until_closed, tail
 
 # The worker sees these variables and nothing else of the grader's environment.
@@ -106,18 +107,6 @@ def worker_uid(slot):
         return _claimed[slot][0]
 
 
-def crash_signal(returncode):
-    """The signal that ended a launched program, or None: killed outright (a negative code), or,
-    under bubblewrap, which exits with 128 + the signal of the program it ran."""
-    if returncode is None:
-        return None
-    if returncode < 0:
-        return -returncode
-    if returncode > 128 and returncode - 128 in signal.Signals._value2member_map_:
-        return returncode - 128
-    return None
-
-
 @dataclasses.dataclass
 class Fate:
     """How a worker ended: its exit code, the signal that killed it, or the time limit."""
@@ -125,7 +114,6 @@ class Fate:
     output: str
 
     def describe(self):
-        from .gtest_runner import signal_name
         if self.returncode is None:
             return "it was still running at the time limit (an infinite loop, or far too much work)"
         if crash_signal(self.returncode) is not None:
@@ -354,7 +342,6 @@ def failed_assertion(judge_output):
 
 def outcome_of(run: JudgedRun, name, timeout):
     """(passed, message) of one test from a judged run."""
-    from .gtest_runner import clean, signal_name
     tests = [t for t in (run.report or {}).get("tests", []) if isinstance(t, dict)]
     if run.judge_code is None:
         why = run.worker.describe() if run.worker.returncode is None else "the judge ran out of time"

@@ -14,14 +14,14 @@ namespace {
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 // Gauss-Seidel passes of stretch limiting per step, after the tethers: they only fix the
 // local strain the tethers leave (a pass moves a correction about one spring, so more passes
-// would not reach far either; see handouts/02_net.md, section 2.4).
+// would not reach far either; see handouts/02_net.md, section 2.d).
 constexpr int kStretchPasses = 2;
 // The tethers hold each mass within (1 + kTetherShare x max stretch) of its rest distance from
 // each pin, not the full max stretch: between two pins, the spheres around them let the edge
 // run (1 + tether stretch)^2 as long sideways, plus its sag (21 % and more at 10 %), and
 // the two passes cannot take that back along the edge. With an eighth of the allowance the
 // largest structural strain after 5 s is 0.103 on the thesis cloth at r = 64 (a quarter:
-// 0.129, the whole: 0.248; handouts/02_net.md, section 2.4).
+// 0.129, the whole: 0.248; handouts/02_net.md, section 2.d).
 constexpr double kTetherShare = 1.0 / 8.0;
 
 }  // namespace
