@@ -17,7 +17,7 @@ export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$ROOT}"
 say() { printf 'springlab web: %s\n' "$*" >&2; }
 die() { say "$*"; exit 2; }
 
-usage() { sed -n '2,9p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,8p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
 
 tree=""
 out="$ROOT/out/web"
@@ -45,24 +45,8 @@ fi
 # Debian's package brings its system libraries prebuilt (a frozen cache): nothing is built
 # once per machine. With emsdk, Emscripten builds them once into its own cache.
 if ! command -v emcc >/dev/null || ! command -v emcmake >/dev/null; then
-  if command -v apt-get >/dev/null; then
-    sudo=()
-    if [[ "$(id -u)" == 0 && ! -t 0 ]]; then
-      say "installing emscripten (apt-get, as root without a terminal, as in CI)"
-    elif [[ -t 0 ]]; then
-      answer=""
-      read -r -p "springlab web: emcc is missing; install Debian's emscripten with apt-get? [y/N] " answer
-      [[ "$answer" =~ ^[yY] ]] || die "not installed; to do it yourself: sudo apt-get install emscripten"
-      [[ "$(id -u)" == 0 ]] || sudo=(sudo)
-    else
-      die "emcc is missing and there is no terminal to ask: sudo apt-get install emscripten"
-    fi
-    export DEBIAN_FRONTEND=noninteractive
-    "${sudo[@]}" apt-get update -qq
-    "${sudo[@]}" apt-get install -y -qq --no-install-recommends emscripten >/dev/null
-  else
-    die "emcc is missing: install Emscripten (the emsdk from emscripten.org, or your distribution's emscripten package), then run this again"
-  fi
+  "$ROOT/tools/offer_package.sh" web emscripten \
+    "install Emscripten (the emsdk from emscripten.org, or your distribution's emscripten package), then run this again"
 fi
 
 # ---- which labs, and the scene the page opens on ---------------------------------------------
@@ -105,9 +89,12 @@ fi
 programs=()
 for lab in "${labs[@]}"; do programs+=("springlab-web-$lab"); done
 say "building ${programs[*]} ($tree code)"
+set +e
 cmake --build "$build" -j "$JOBS" --target "${programs[@]}" 2>&1 |
-  grep -v -E '^(\[ *[0-9]+%\] Built target|gmake|make)' >&2 || true
-[[ "${PIPESTATUS[0]}" == 0 ]] || die "build failed (the compiler's messages are above)"
+  grep --line-buffered -v -E '^(\[ *[0-9]+%\] Built target|g?make)' >&2
+statuses=("${PIPESTATUS[@]}")
+set -e
+[[ "${statuses[0]}" == 0 ]] || die "build failed (the compiler's messages are above)"
 
 # ---- the page -------------------------------------------------------------------------------
 mkdir -p "$out"

@@ -6,7 +6,7 @@ Module['postMainLoop'] = function () {
 };
 Module['springlab'] = {
   // Whether the viewer runs (main has opened its scene).
-  ready: function () { return Module['_springlab_state'] !== undefined && UTF8ToString(Module['_springlab_state']()) !== 'null'; },
+  ready: function () { return runtimeInitialized && UTF8ToString(Module['_springlab_state']()) !== 'null'; },
   // Step `frames` viewer frames (each its substeps of dt), paused or not; returns the
   // milliseconds the physics took.
   step: function (frames) {

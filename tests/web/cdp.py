@@ -59,7 +59,7 @@ class Browser:
         self._buffer = b""
         self._next_id = 0
         self._events = []
-        target = self._call("Target.createTarget", {"url": "about:blank", "width": width, "height": height})
+        target = self._call("Target.createTarget", {"url": "about:blank"})
         self._session = self._call("Target.attachToTarget",
                                    {"targetId": target["targetId"], "flatten": True})["sessionId"]
         for domain in ("Page", "Runtime", "Log"):
