@@ -33,8 +33,15 @@ FRAMES = 120
 TOLERANCE = 1e-9
 # Each lab's default scene (the README's `./springlab run lab1` ...), for --measure.
 DEFAULT_SCENES = {"rope": "rope.json", "net": "net_hanging.json", "softbody": "softbody_ball.json"}
-# Scenes whose page may end farther from the native run than TOLERANCE, with the reason.
-KNOWN_DIFFERENCES = {}
+# Scenes compared after fewer frames, with the reason. The page and the native program differ
+# in the last bit of some sums (the native build's Eigen adds with SSE, WebAssembly's in scalar
+# order), which stays there in every scene but one that amplifies it:
+SHORTER_RUNS = {
+    # The cloth falls on itself: each self-contact starts or ends at a threshold, and a last-bit
+    # difference that moves one across it changes the run. Measured relative differences of the
+    # positions: 3e-16 after 5 frames, 1e-10 after 20, 3e-5 after 60, 2e-3 after 120.
+    "net_self_collision.json": (10, "self-contacts amplify last-bit differences (chaotic)"),
+}
 
 
 def serve(folder):
@@ -122,6 +129,7 @@ def main():
     parser.add_argument("--out", type=pathlib.Path)
     parser.add_argument("--scene", action="append", default=[])
     parser.add_argument("--measure", action="store_true")
+    parser.add_argument("--frames", type=int, default=FRAMES, help=f"frames to step (default {FRAMES})")
     parser.add_argument("--no-build", action="store_true", help="use the page already in --out")
     args = parser.parse_args()
     root = args.root.resolve()
@@ -163,26 +171,29 @@ def main():
                     start = browser.evaluate("Module.springlab.state()")
                     if start.get("problem"):
                         raise BrowserError("the viewer reports: " + start["problem"])
-                    result["physics_ms"] = browser.evaluate(f"Module.springlab.step({FRAMES})")
+                    frames, reason = SHORTER_RUNS.get(name, (args.frames, ""))
+                    frames = min(frames, args.frames)
+                    result["physics_ms"] = browser.evaluate(f"Module.springlab.step({frames})")
                     state = browser.evaluate("Module.springlab.state()")
                     if state.get("problem"):
                         raise BrowserError("the viewer reports: " + state["problem"])
-                    steps = FRAMES * state["substeps"]
+                    steps = frames * state["substeps"]
                     native, _ = native_run(args.sim, scene, steps, work)
                     worst = relative_differences(state, native)
                     result.update(steps=steps, differences=worst)
-                    allowed, reason = KNOWN_DIFFERENCES.get(name, (TOLERANCE, ""))
-                    over = {k: v for k, v in worst.items() if not v <= allowed}
+                    result.update(frames=frames, shorter_because=reason)
+                    over = {k: v for k, v in worst.items() if not v <= TOLERANCE}
                     if over:
                         failures.append(f"{name}: the page ends {over} (relative) from the native run after "
-                                        f"{steps} steps; allowed {allowed:g}" + (f" ({reason})" if reason else ""))
+                                        f"{steps} steps; allowed {TOLERANCE:g}")
                     shot = out / f"{scene.stem}.png"
                     browser.screenshot(shot)
                     failures += check_screenshot(shot)
                 except (BrowserError, RuntimeError, KeyError) as e:
                     failures.append(f"{name}: {e}")
                 failures += [f"{name}: {p}" for p in browser.problems]
-                print(f"{name}: {json.dumps(result.get('differences', {}))}", flush=True)
+                note = f" after {result['frames']} frames: {result['shorter_because']}" if result.get("shorter_because") else ""
+                print(f"{name}: {json.dumps(result.get('differences', {}))}{note}", flush=True)
             if args.measure:
                 results["measurements"] = measure(browser, base, root, args.sim, page, work)
     finally:
