@@ -55,7 +55,7 @@ def page(title, body, depth):
     up = "../" * depth
     return f"""<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
-<title>{html.escape(title)}</title><style>{STYLE}</style></head>
+<title>{html.escape(title)}</title><link rel="icon" href="data:,"><style>{STYLE}</style></head>
 <body><header><a href="{up}index.html">springlab</a><a href="{up}web/index.html">all scenes live</a></header>
 <main>
 {body}

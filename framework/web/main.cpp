@@ -2,6 +2,7 @@
 // passes the URL's choices as arguments: main.js's Module.arguments.
 //   --scene FILE     a scene in /scenes (preloaded from scenes/), e.g. rope.json
 //   --paused         start paused (the tests step it through the hook instead)
+//   --compact        the panel collapsed to its title bar (?embed: a frame in a handout)
 //   --width W --height H   the canvas in CSS pixels
 #include <cstdlib>
 #include <iostream>
@@ -31,6 +32,8 @@ int main(int argc, char** argv) {
       scene = argv[++i];
     } else if (arg == "--paused") {
       options.paused = true;
+    } else if (arg == "--compact") {
+      options.compact = true;
     } else if (arg == "--width" && hasValue) {
       options.width = std::atoi(argv[++i]);
     } else if (arg == "--height" && hasValue) {

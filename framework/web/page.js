@@ -33,6 +33,7 @@
   // The program's arguments (framework/web/main.cpp) and its output on the console.
   var args = ['--scene', scene.file, '--width', String(canvas.clientWidth), '--height', String(canvas.clientHeight)];
   if (params.has('paused')) args.push('--paused');
+  if (params.has('embed')) args.push('--compact');
   window.Module = {
     canvas: canvas,
     arguments: args,

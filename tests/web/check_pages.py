@@ -25,9 +25,10 @@ import sys
 import tempfile
 import threading
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+HERE = pathlib.Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "viewer")]
 from cdp import Browser, BrowserError, find_browser  # noqa: E402
-from png import read_png  # noqa: E402
+from check_snapshot import read_png  # noqa: E402  (the desktop viewer tests' PNG reader)
 
 SKIP = 77
 FRAMES = 120
@@ -98,13 +99,13 @@ def relative_differences(page, native):
 def check_screenshot(path):
     """Problems with a screenshot: blank, no scene drawn, or no panel (the ImGui windows'
     title bars, blue in ImGui's dark style, in the right half where the panel sits)."""
-    width, height, rows = read_png(path)
+    width, height, bpp, rows = read_png(path)
     background = (28, 31, 38)  # the viewer's clear colour (0.11, 0.12, 0.15)
     colours, drawn, title_bar = set(), 0, 0
     for y in range(0, height, 2):
         row = rows[y]
         for x in range(0, width, 2):
-            pixel = (row[3 * x], row[3 * x + 1], row[3 * x + 2])
+            pixel = (row[bpp * x], row[bpp * x + 1], row[bpp * x + 2])
             colours.add(pixel)
             if max(abs(a - b) for a, b in zip(pixel, background)) > 12:
                 drawn += 1

@@ -133,6 +133,7 @@ class Viewer : public LiveViewer {
     control_.dt = scene_.settings.dt > 0.0 ? scene_.settings.dt : 0.002;
     control_.substeps = std::max(scene_.settings.substeps, 1);
     control_.paused = options.paused;
+    control_.panelCollapsed = options.compact;
     missing_ = scene_.missingAtLoad;
   }
   ~Viewer() override {

@@ -16,6 +16,7 @@ struct ViewerOptions {
   double dt = 0.0;            // s; when > 0, overrides the scene's dt (the panel can change it)
   std::string tree = "student";  // "student" or "reference", shown in the HUD
   bool paused = false;        // start paused (P or the panel continues)
+  bool compact = false;       // start with the panel collapsed (a small frame in a web page)
 };
 
 // Open a window on the scene and run it. Returns a process exit code (0 on success).
