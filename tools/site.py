@@ -77,9 +77,27 @@ def sections(text):
     return parts
 
 
+LIST_ITEM = re.compile(r"^\s*(?:[-*+]|\d+[.)])\s")
+
+
+def lists_after_paragraphs(text):
+    """A blank line before a list that follows a paragraph line: GitHub's Markdown starts the
+    list there, Python-Markdown needs the blank line (code blocks left as they are)."""
+    out, fenced, previous = [], False, ""
+    for line in text.splitlines(keepends=True):
+        if line.lstrip().startswith("```"):
+            fenced = not fenced
+        if (not fenced and LIST_ITEM.match(line) and previous.strip() and not LIST_ITEM.match(previous)
+                and not previous.startswith(("    ", "\t"))):
+            out.append("\n")
+        out.append(line)
+        previous = line
+    return "".join(out)
+
+
 def render(text, pages):
     """Markdown to HTML; links to the Markdown files the site renders go to their pages."""
-    body = markdown.markdown(text, extensions=EXTENSIONS)
+    body = markdown.markdown(lists_after_paragraphs(text), extensions=EXTENSIONS)
 
     def link(match):
         attribute, target, anchor = match.group(1), match.group(2), match.group(3) or ""
