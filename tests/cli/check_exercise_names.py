@@ -10,7 +10,8 @@ are where its name says, so a newcomer finds them without searching:
                 of the exercise's functions
   declarations  each of the manifest's "functions" is declared so in the lab's exercises.hpp
   handout       the manifest's "section" is a heading of the lab's handout; the handout has an
-                "### Exercise <id>: ..." heading
+                "### Exercise <id>: ..." heading, and no other heading numbered like an exercise
+                (the physics sections are lettered: 2.a, 2.b)
 
 and the table of handouts/authoring.md ("Where each exercise lives") is the manifests' own.
 
@@ -70,6 +71,10 @@ def problems(root):
                     if line.startswith("#")} if handout_path.exists() else set()
         if not headings:
             found.append(f"{where}: handout {m['handout']}: missing")
+        for heading in sorted(headings):
+            if re.match(r"^\d+\.\d+\b", heading):
+                found.append(f"{m['handout']}: heading '{heading}' is numbered like an exercise; letter the "
+                             f"sections of the physics ({heading.split('.')[0]}.a, {heading.split('.')[0]}.b, ...)")
         for ex in m["exercises"]:
             name = f"{where}: exercise {ex['id']}"
             stem = ex["file"][:-len(".cpp")]

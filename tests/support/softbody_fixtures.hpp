@@ -26,6 +26,9 @@ inline softbody::SoftBodyParameters quietBody(SurfaceMesh mesh, double totalMass
   return p;
 }
 
+// The contact tests' material: stiffness 2000 N/m, damping 5 N s/m, friction 0.5, no bounce.
+inline const softbody::ContactMaterial kMaterial{2000.0, 5.0, 0.5, 0.0};
+
 // A horizontal floor y = height facing up.
 inline softbody::Obstacle floorAt(double height) {
   softbody::Obstacle o;

@@ -1,9 +1,6 @@
 // Exercise 1.1: the spring-damper force, checked against Hooke's law and linear damping.
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <numbers>
-
 #include <springlab/rope/rope.hpp>
 #include "seeded.hpp"
 #include "rope_fixtures.hpp"

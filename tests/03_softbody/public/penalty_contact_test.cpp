@@ -10,6 +10,7 @@
 namespace springlab::softbody {
 namespace {
 
+using springlab::testing::kMaterial;
 using springlab::testing::ballAboveTheFloor;
 using springlab::testing::run;
 
@@ -34,8 +35,6 @@ TEST(BallOnTheFloor, KeepsNinetyPercentOfItsVolumeWithPressure) {
   EXPECT_GT(lowest, -0.02) << "the floor's penalty spring must hold the ball up (lowest point " << lowest << " m)";
   EXPECT_LT(speed, 0.2) << "after 3 s the ball should be at rest on the floor";
 }
-
-const ContactMaterial kMaterial{2000.0, 5.0, 0.5, 0.0};
 
 TEST(PenaltyContact, PushesOutInProportionToDepth) {
   const Penetration p{true, 0.01, Vec3::UnitY()};

@@ -5,7 +5,6 @@
 #include <numbers>
 #include <random>
 
-#include <springlab/symplectic_euler.hpp>
 #include "seeded.hpp"
 #include <springlab/softbody/softbody.hpp>
 #include "softbody_fixtures.hpp"

@@ -8,6 +8,7 @@
 namespace springlab::softbody {
 namespace {
 
+using springlab::testing::kMaterial;
 using springlab::testing::ballAboveTheFloor;
 using springlab::testing::run;
 
@@ -49,8 +50,6 @@ TEST(UsersSphere, PushesADentIntoTheBall) {
   EXPECT_LT(ball.volume(ball.state), 0.97 * restingVolume) << "the sphere must dent the ball";
   EXPECT_GT(ball.pressure(ball.state), restingPressure) << "squeezed, the gas's pressure must rise";
 }
-
-const ContactMaterial kMaterial{2000.0, 5.0, 0.5, 0.0};
 
 TEST(ProjectionContact, MovesThePointOutOfTheObstacle) {
   const Vec3 c(0, 0, 0);
