@@ -541,5 +541,103 @@ std::vector<double> f(const std::vector<double>& x) {
                 self.assertTrue(any(what in reached for _, reached in found), found)
 
 
+class SealedCompile(Temp):
+    """The compiler's sandbox (sealed_compile.py) against a grading tree of mode 700: the
+    framework's headers are found (staged), nothing of the tree is (`#include`, `__has_include`,
+    `.incbin`), and each limit stops the compiler with a sentence naming it."""
+
+    def setUp(self):
+        super().setUp()
+        from springlab_grader import judged_run, sealed_compile  # noqa: PLC0415
+        if judged_run.bubblewrap() is None:
+            self.skipTest("bubblewrap cannot create namespaces here")
+        self.sc = sealed_compile
+        self.tree = self.tmp / "tree"
+        (self.tree / "framework" / "include" / "springlab").mkdir(parents=True)
+        (self.tree / "framework" / "include" / "springlab" / "seven.hpp").write_text("inline int seven() { return 7; }\n")
+        (self.tree / "solutions").mkdir()
+        self.secret = self.tree / "solutions" / "secret.cpp"
+        self.secret.write_text("SPRINGLAB_REFERENCE_MARKER\n")
+        self.tmp.chmod(0o700)
+        self.tree.chmod(0o700)
+        self.work = pathlib.Path(tempfile.mkdtemp(prefix="springlab-sealed-test-"))
+        self.addCleanup(__import__("shutil").rmtree, self.work, True)
+        self.work.chmod(0o711)
+        (self.work / "src").mkdir(mode=0o755)
+        (self.work / "obj").mkdir()
+        sandbox = sealed_compile.compile_sandbox()
+        if sandbox.identity():
+            import os  # noqa: PLC0415
+            os.chown(self.work / "obj", *sandbox.identity())
+        self.sandbox = sandbox
+        self.compiler = sealed_compile.sealed_compiler(
+            ["/usr/bin/c++", f"-I{self.tree / 'framework' / 'include'}", "-O1", "-std=c++20"], self.tree, True)
+
+    def compile(self, name, code, sandbox=None):
+        source = self.work / "src" / name
+        source.write_text(code)
+        source.chmod(0o644)
+        return self.compiler.run(self.work, name, sandbox or self.sandbox)
+
+    def test_headers_at_neutral_paths(self):
+        self.assertIn("-I/springlab/framework/include", self.compiler.argv)
+        run = self.compile("ok.cpp", "#include <springlab/seven.hpp>\n#include <vector>\nint f() { return seven(); }\n")
+        self.assertEqual(run.returncode, 0, run.output)
+        self.assertTrue((self.work / "obj" / "ok.cpp.o").is_file())
+        self.assertIn("/springlab/framework/include/springlab/seven.hpp", (self.work / "obj" / "ok.cpp.d").read_text())
+
+    def test_nothing_of_the_tree_is_visible(self):
+        probe = f'#if __has_include("{self.secret}")\n#error the tree is visible\n#endif\nint f();\n'
+        self.assertEqual(self.compile("probe.cpp", probe).returncode, 0)
+        for name, code in (("incbin.cpp", f'asm(".incbin \\"{self.secret}\\"");\n'),
+                           ("include.cpp", f'#include "{self.secret}"\n')):
+            with self.subTest(name):
+                run = self.compile(name, code)
+                self.assertNotEqual(run.returncode, 0)
+                self.assertNotIn("SPRINGLAB_REFERENCE_MARKER", run.output)
+                self.assertNotIn(str(self.tree), self.sc.scrub(run.output, {self.tree: "<grading tree>"}))
+
+    def test_limits_stop_it_with_a_sentence(self):
+        import dataclasses  # noqa: PLC0415
+        small = dataclasses.replace(self.sandbox, memory_mb=512, file_mb=4)
+        run = self.compile("zero.cpp", '#include "/dev/zero"\n', small)
+        self.assertIn("memory limit", self.sc.stop_reason(run, "zero.cpp") or "", run.output)
+        run = self.compile("fill.cpp", 'asm(".fill 50000000, 1, 0");\n', small)
+        self.assertIn("output limit", self.sc.stop_reason(run, "fill.cpp") or "", run.output)
+        self.assertIsNone(self.sc.stop_reason(self.compile("typo.cpp", "int f() { return x; }\n"), "typo.cpp"))
+
+    def test_an_include_folder_holding_the_tree_is_refused(self):
+        with self.assertRaisesRegex(errors.GradeError, "solutions/"):
+            self.sc.sealed_compiler(["/usr/bin/c++", f"-I{self.tree}"], self.tree, True)
+
+
+class SymlinkedLabFolders(Temp):
+    """A lab folder (or labs/) that is a symbolic link, absolute or relative, at any depth, is
+    never followed, and the note does not print where it leads."""
+
+    def test_links_are_refused_with_a_note(self):
+        lab = labs.discover_labs()[0]
+        outside = self.tmp / "outside" / lab.dir
+        outside.mkdir(parents=True)
+        for name in submission.exercise_names(lab):
+            (outside / name).write_text("// the reference\n")
+        for kind in ("absolute", "relative", "deep", "labs"):
+            with self.subTest(kind):
+                root = self.tmp / kind
+                nested = root / "repo" / "deeper" if kind == "deep" else root
+                nested.mkdir(parents=True)
+                if kind == "labs":
+                    (nested / "labs").symlink_to(outside.parent)
+                elif kind == "relative":
+                    (nested / lab.dir).symlink_to(pathlib.Path("..") / "outside" / lab.dir)
+                else:
+                    (nested / lab.dir).symlink_to(outside)
+                notes = []
+                found = submission.locate_labs(root, [lab], notes, lab.name)
+                self.assertIsNone(found[lab.dir])
+                self.assertTrue(any("symbolic link" in n and "refused" in n for n in notes), notes)
+                self.assertFalse(any(str(self.tmp) in n for n in notes), notes)
+
+
 if __name__ == "__main__":
     unittest.main()

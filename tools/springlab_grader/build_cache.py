@@ -19,6 +19,8 @@ from .gtest_runner import budget_seconds, grade_binary, listed_tests
 from .integrity import defined_symbols
 from .labs import ROOT
 from .sandbox import tail
+from .sealed_compile import sealed_compiler
+from .staging import stage
 
 
 # ---- the link CMake writes -------------------------------------------------------------------
@@ -136,6 +138,7 @@ class LabBuild:
     tests_present: set
     oracle_symbols: set     # strong symbols the reference "oracle" defines
     protected_symbols: set  # strong symbols of the framework, GoogleTest and the grading main
+    sealed: object = None   # the compile as its sandbox runs it (sealed_compile.SealedCompiler)
 
     @property
     def given_objects(self):
@@ -292,8 +295,9 @@ class Cache:
                     return {str(k): float(v) for k, v in per_test.items()}
             except (OSError, ValueError):
                 pass
-            # Launched as the workers are (gtest_runner.run_test), so the times compare.
-            results = grade_binary(program, lab.manifest, 1, sandbox, 1, seccomp=link.worker_seccomp)
+            # Launched as the workers are (gtest_runner.run_test), so the times compare; from
+            # the stage, which the sandbox users can reach wherever the checkout lives.
+            results = grade_binary(str(stage().program(program)), lab.manifest, 1, sandbox, 1, seccomp=link.worker_seccomp)
             # Counted as budgets count a student's tests: wall time over the machine's load.
             per_test = {r.test["name"]: budget_seconds(r.seconds) for r in results}
             temporary = record.with_name(f"{record.name}.{os.getpid()}")
@@ -322,6 +326,7 @@ class Cache:
                        and f != link.oracle)]
         if not os.access(link.skeleton_program, os.X_OK):
             raise GradeError(f"{link.skeleton_program}: missing; was {lab.name}_grading_student built?")
-        present = set(listed_tests(link.skeleton_program, sandbox))
+        present = set(listed_tests(str(stage().program(link.skeleton_program)), sandbox))
+        from .judged_run import bubblewrap
         return LabBuild(flags, link, present, defined_symbols([link.oracle]) if link.oracle else set(),
-                        defined_symbols(protected))
+                        defined_symbols(protected), sealed_compiler(flags, ROOT, bubblewrap() is not None))

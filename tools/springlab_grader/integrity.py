@@ -88,26 +88,9 @@ def parse_depfile(text):
     return [d.replace("\\ ", " ") for d in re.split(r"(?<!\\)\s+", deps.strip()) if d]
 
 
-def allowed_folders(work, compile_argv):
-    """The submission's own files, the include folders of the lab's flags, the system's."""
-    allowed = [(work / "src").resolve(), pathlib.Path("/usr")]
-    allowed += [pathlib.Path(f[2:] if f.startswith("-I") else f).resolve()
-                for i, f in enumerate(compile_argv)
-                if f.startswith("-I") or (i > 0 and compile_argv[i - 1] == "-isystem")]
-    return allowed
-
-
-def outside_includes(work, flags, name, compile_argv):
-    """The first file src/<name> includes from outside the allowed folders (names only: the
-    compiler's error messages could quote such a file)."""
-    run = subprocess.run(flags + ["-M", "-MG", f"src/{name}"], cwd=work, capture_output=True, text=True)
-    allowed = allowed_folders(work, compile_argv)
-    for dep in parse_depfile(run.stdout):
-        path = pathlib.Path(dep)
-        resolved = (work / path).resolve() if not path.is_absolute() else path.resolve()
-        if not any(resolved.is_relative_to(folder) for folder in allowed):
-            return dep
-    return None
+def allowed_folders(work, build):
+    """The submission's own files, the folders the compiler's sandbox shows (sealed_compile.py)."""
+    return [(work / "src").resolve(), *build.sealed.include_folders()]
 
 
 def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
@@ -118,7 +101,7 @@ def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
     reference's other exercise files define: a file that defines another exercise's function
     (which its grading program takes from the reference) is flagged too, and so is a file that
     calls what FORBIDDEN_CALLS lists (unless `call_check` is off, to test the sandbox)."""
-    allowed = allowed_folders(work, build.compile_argv)
+    allowed = allowed_folders(work, build)
     flagged = {}
     defined_in = symbols_by_file(objects)
     undefined_in = symbols_by_file(objects, undefined=True)
@@ -136,7 +119,9 @@ def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
         deps = obj.with_suffix(".d")
         for dep in parse_depfile(deps.read_text()) if deps.exists() else []:
             if not inside(dep):
-                flagged.setdefault(name, f"includes {dep}, a file outside the submission and the framework")
+                # Its name only: the path may be the grading tree's.
+                flagged.setdefault(name, f"includes {pathlib.PurePath(dep).name}, a file outside the submission "
+                                         f"and the framework")
                 break
         used = undefined_in[str(obj)] & build.oracle_symbols
         if used:

@@ -9,7 +9,6 @@ import hashlib
 import os
 import pathlib
 import re
-import shlex
 import shutil
 import subprocess
 import sys
@@ -24,10 +23,12 @@ from .gtest_runner import Budget, BudgetRule, draw_seed, grade_binary, grade_jud
 from .labs import ROOT, discover_labs, exercises_in
 from .reports import write_submission
 from .results import Graded, LabResult, TestResult, failed_lab
-from .sandbox import TIMEOUT, Sandbox, run_sandboxed, tail
+from .sandbox import TIMEOUT, Sandbox, tail
+from .sealed_compile import compile_sandbox as make_compile_sandbox
+from .sealed_compile import scrub, stop_reason
+from .staging import stage
 from .submission import SOURCE_SUFFIXES, collect_sources, locate_labs, unpack
 
-COMPILE_TIMEOUT = 180.0
 # The time budget of a lab: BUDGET_FLOOR seconds plus BUDGET_FACTOR times the reference's own
 # grading time (the sum of its tests' seconds), shared among its files (BudgetRule); a
 # submission's is the sum of its labs'. A judged test runs two processes and streams a trace,
@@ -265,6 +266,7 @@ class LabGrader:
             os.chmod(path, 0o755 if path.is_dir() else 0o644)
         if ids:
             os.chown(obj, *ids)
+        os.chmod(obj, 0o755)
         headers = b"".join(hashlib.sha256(files[n]).digest() for n in sorted(files) if not n.endswith(".cpp"))
         sources = sorted(n for n in changed if n.endswith(".cpp"))
         with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, self.jobs)) as pool:
@@ -272,7 +274,8 @@ class LabGrader:
         return ({n: o for n, (o, e) in outcomes.items() if not e}, {n: e for n, (o, e) in outcomes.items() if e})
 
     def compile_one(self, name, data, headers):
-        """Compile src/<name> to an object, or reuse the same compile of an earlier submission."""
+        """Compile src/<name> to an object in the compiler's sandbox (sealed_compile.py), or
+        reuse the same compile of an earlier submission."""
         flags = self.build.compile_argv + ["-Isrc"]
         key = self.cache.objects.key(flags, name, data, headers)
         private = self.work / "objects"  # the grader's copies, out of the sandbox user's reach
@@ -280,23 +283,28 @@ class LabGrader:
         cached = self.cache.objects.fetch(key, private, name)
         if cached is not None:
             return cached, None
-        argv = flags + ["-fdiagnostics-color=never", "-MD", "-MF", f"obj/{name}.d",
-                        "-o", f"obj/{name}.o", "-c", f"src/{name}"]
-        run = run_sandboxed(argv, self.compile_sandbox, cwd=self.work)
-        if run.returncode is None:
-            return None, f"{name}: compiling took longer than {self.compile_sandbox.timeout:g} s"
+        run = self.build.sealed.run(self.work, name, self.compile_sandbox)
+        stopped = stop_reason(run, name)
+        if stopped:
+            return None, stopped
+        output = scrub(run.output, self.grader_places())
         if run.returncode != 0:
-            outside = integrity.outside_includes(self.work, flags, name, self.build.compile_argv)
-            if outside:
-                return None, f"{name} includes {outside}, a file outside the submission and the framework"
-            return None, first_errors(run.output)
-        if run.output.strip():
-            self.notes.append(f"{name}: the compiler warns:\n{tail(run.output, 12)}")
-        # Copy out of the sandbox user's folder before anything reads it.
-        shutil.copyfile(self.work / "obj" / f"{name}.o", private / f"{name}.o")
-        shutil.copyfile(self.work / "obj" / f"{name}.d", private / f"{name}.d")
+            return None, first_errors(output)
+        if output.strip():
+            self.notes.append(f"{name}: the compiler warns:\n{tail(output, 12)}")
+        # Copy out of the sandbox user's folder before anything reads it: plain files only.
+        for suffix in (".o", ".d"):
+            made = self.work / "obj" / f"{name}{suffix}"
+            if made.is_symlink() or not made.is_file():
+                return None, f"{name}: the compiler left no {suffix} file"
+            shutil.copyfile(made, private / f"{name}{suffix}")
         self.cache.objects.store(key, private / f"{name}.o", private / f"{name}.d")
         return private / f"{name}.o", None
+
+    def grader_places(self):
+        """The grader's own paths, as a student must never read them in a message."""
+        return {ROOT: "<grading tree>", self.cache.path: "<grading build>", stage().root: "/springlab",
+                self.work.parent: "<grading folder>"}
 
     # -- linking
     def link_all(self, programs, worker=False):
@@ -457,18 +465,10 @@ def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, me
     if not (ROOT / "solutions").exists():
         raise GradeError(f"{ROOT}: no solutions/ folder: grading needs the instructor tree, not a student release")
     sandbox = Sandbox(timeout=timeout, memory_mb=memory_mb)
-    compile_sandbox = Sandbox(timeout=COMPILE_TIMEOUT, memory_mb=0, file_mb=256)
+    compile_sandbox = make_compile_sandbox()
     # With --lab, only that lab's grading programs are built (a Gradescope assignment per lab).
     cache = Cache(cache_path, [lab for lab in labs if only is None or only in (lab.name, lab.dir)] or labs,
                   build=build, jobs=jobs)
-    if compile_sandbox.identity():
-        # The compiler runs as the sandbox user only if that user can read the framework's
-        # headers (not so in a checkout under /root); else as us, with the include check.
-        folders = {f[2:] for lab in cache.labs for f in cache.lab(lab, sandbox).compile_argv if f.startswith("-I")}
-        probe = run_sandboxed(["/bin/sh", "-c", " && ".join(f"test -r {shlex.quote(d)} -a -x {shlex.quote(d)}"
-                                                            for d in sorted(folders)) or "true"], compile_sandbox)
-        if probe.returncode != 0:
-            compile_sandbox.drop_to = None
     if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
         raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
     return Session(labs, cache, sandbox, compile_sandbox, draw_seed(seed), only, budget_factor, budget_floor,

@@ -24,6 +24,7 @@ class Sandbox:
     stack_mb: int = 64
     file_mb: int = 64
     drop_to: str = "nobody"  # the user tests run as when the grader is root
+    cpu_seconds: float = None  # CPU time per process; None: the wall-time limit and 2 s
 
     def identity(self):
         if os.geteuid() != 0 or not self.drop_to:
@@ -33,7 +34,7 @@ class Sandbox:
 
     def limits(self):
         mib = 1 << 20
-        cpu = int(self.timeout) + 2
+        cpu = int(self.cpu_seconds) if self.cpu_seconds else int(self.timeout) + 2
         pairs = [(resource.RLIMIT_CPU, cpu), (resource.RLIMIT_STACK, self.stack_mb * mib),
                  (resource.RLIMIT_FSIZE, self.file_mb * mib), (resource.RLIMIT_CORE, 0),
                  (resource.RLIMIT_NOFILE, 256)]
