@@ -31,11 +31,13 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.gtest_runner import check_binary_against_manifest, draw_seed, grade_binary  # noqa: E402
+from springlab_grader.integrity import REPLACED  # noqa: E402
 from springlab_grader.judged_run import bubblewrap, go_without_bubblewrap, starts_in_bubblewrap  # noqa: E402
 from springlab_grader.manifest import ManifestError, load_manifest  # noqa: E402
 from springlab_grader.reports import print_lab, write_outputs  # noqa: E402
 from springlab_grader.results import LabResult  # noqa: E402
 from springlab_grader.sandbox import TIMEOUT, Sandbox  # noqa: E402
+from springlab_grader.student_check import forbidden_call_notes  # noqa: E402
 
 
 def main():
@@ -103,7 +105,15 @@ def main():
     print(f"{manifest['title']}: grading {shown} (SPRINGLAB_SEED={seed})")
     started = time.monotonic()
     results = grade_binary(binary, manifest, seed, sandbox, args.jobs, present, seccomp=seccomp)
-    lab = LabResult(manifest, results, seed=seed, seconds=time.monotonic() - started)
+    # The call check `grade` makes: a file that calls what exercise code may not scores as the
+    # skeleton's there, so here too, with the same sentence.
+    flagged = forbidden_call_notes(shown, pathlib.Path(args.manifest).resolve().parents[2], manifest["lab"])
+    lost = {ex_id: name for name, (_, ids) in flagged.items() for ex_id in ids}
+    for r in results:
+        if r.exercise["id"] in lost:
+            r.passed, r.message = False, REPLACED.format(name=lost[r.exercise["id"]])
+    lab = LabResult(manifest, results, [note for note, _ in flagged.values()], seed=seed,
+                    seconds=time.monotonic() - started)
     print_lab(lab, quiet=args.quiet)
     if args.out:
         write_outputs(args.out, [lab], manifest["title"], lab.seconds, seed)

@@ -20,9 +20,9 @@ Points follow the exercise: each exercise file is linked into its own grading pr
 the reference's other exercise files, and only its exercises' tests run there, so a bug in one
 exercise costs that exercise's points alone. A file that does not compile is graded as the
 skeleton's (its exercises score 0) and the report shows the compiler's first errors. Each lab
-has a time budget (a multiple of the reference's own grading time, measured once and kept in
-the cache build, plus a floor); once it is spent, the remaining tests fail with "time budget
-spent".
+has a time budget in CPU seconds (a multiple of the reference's own CPU time, measured once
+and kept in the cache build, plus a floor) and a wall-time limit (--lab-wall-limit); once
+either is spent, the remaining tests fail and say which.
 
 A lab is found in a submission as a folder named like it (01_rope) that holds exercise files,
 preferably under labs/ (so a whole repository, with or without tests/, works); flat exercise
@@ -48,7 +48,7 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.errors import GradeError  # noqa: E402
-from springlab_grader.lab_grader import BUDGET_FACTOR, BUDGET_FLOOR, grade_class, start_session  # noqa: E402
+from springlab_grader.lab_grader import BUDGET_FACTOR, BUDGET_FLOOR, LAB_WALL_LIMIT, grade_class, start_session  # noqa: E402
 from springlab_grader.labs import ROOT, discover_labs  # noqa: E402,F401
 from springlab_grader.reports import print_lab, write_gradebook, write_submission  # noqa: E402
 from springlab_grader.sandbox import TIMEOUT  # noqa: E402
@@ -70,7 +70,10 @@ def common_options(ap):
                     help=f"a lab's tests may run this many times the reference's own time, plus the floor "
                          f"(default {BUDGET_FACTOR:g}; 0 = no budget)")
     ap.add_argument("--budget-floor", type=float, default=BUDGET_FLOOR,
-                    help=f"seconds added to each lab's time budget (default {BUDGET_FLOOR:g})")
+                    help=f"CPU seconds added to each lab's time budget (default {BUDGET_FLOOR:g})")
+    ap.add_argument("--lab-wall-limit", type=float, default=LAB_WALL_LIMIT,
+                    help=f"wall-time seconds one lab of one submission may take, compiles, links and tests "
+                         f"(default {LAB_WALL_LIMIT:g}: a hostile lab costs at most about five minutes)")
     ap.add_argument("--no-call-check", action="store_true",
                     help="run exercise files that call the test framework, files, the environment or other "
                          "processes instead of grading them as the skeleton's (only to test the sandbox)")
@@ -80,7 +83,7 @@ def setup(args):
     return start_session(args.cache, build=not args.no_build, jobs=args.jobs, seed=args.seed,
                          timeout=args.timeout, memory_mb=args.memory_limit_mb, only=args.lab,
                          budget_factor=args.budget_factor, budget_floor=args.budget_floor,
-                         call_check=not args.no_call_check)
+                         call_check=not args.no_call_check, lab_wall_limit=args.lab_wall_limit)
 
 
 def cmd_grade(args):

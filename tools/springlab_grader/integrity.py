@@ -20,8 +20,15 @@ def defined_symbols(files):
             if len(parts) >= 2 and parts[1] in "TDBRG" and not parts[0].endswith(":")}
 
 
+# The kinds of definition a student's object may make: strong (T, D, B, R, G) and weak (W, V:
+# `__attribute__((weak))`, u: unique, i: indirect). A weak definition in the student's archive,
+# which comes first in the link, keeps a library's strong one out of it: it counts as a
+# redefinition as much as a strong one.
+STUDENT_DEFINITIONS = "TDBRGWVui"
+
+
 def symbols_by_file(files, undefined=False):
-    """{file: its strongly defined (or its undefined) global symbols}, one nm for all files."""
+    """{file: its global symbols, strong or weak (or its undefined ones)}, one nm for all files."""
     files = [str(f) for f in files]
     found = {f: set() for f in files}
     if not files:
@@ -31,7 +38,7 @@ def symbols_by_file(files, undefined=False):
     for line in run.stdout.splitlines():
         where, _, rest = line.partition(": ")
         parts = rest.split()
-        if where in found and parts and (undefined or (len(parts) >= 2 and parts[1] in "TDBRG")):
+        if where in found and parts and (undefined or (len(parts) >= 2 and parts[1] in STUDENT_DEFINITIONS)):
             found[where].add(parts[0])
     return found
 
@@ -130,20 +137,37 @@ def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
         if defined:
             flagged.setdefault(name, "redefines symbols of the framework, GoogleTest or the grader ("
                                + ", ".join(demangle(defined)[:3]) + ")")
-        reached = forbidden_calls(undefined_in[str(obj)]) if call_check else []
+        reached = forbidden_call_reason(undefined_in[str(obj)]) if call_check else None
         if reached:
-            what = sorted({w for _, w in reached})
-            called = sorted({d.split("(")[0] for d in demangle([s for s, _ in reached])})
-            flagged.setdefault(name, f"calls {', '.join(called[:3])}, which reach "
-                               f"{' and '.join(what)}: exercise code may compute, allocate and print, nothing more")
+            flagged.setdefault(name, reached)
         foreign = defined_in[str(obj)] & (others or {}).get(name, set())
         if foreign:
             flagged.setdefault(name, "defines functions of another exercise file ("
                                + ", ".join(demangle(foreign)[:3]) + "); each exercise is graded in its own file")
     for name, why in flagged.items():
-        lost = exercises_in(lab.solution / name)
-        what = f"exercise {', '.join(lost)} scores 0" if lost else "it was left out"
-        notes.append(f"{name} {why}: it is graded as the released skeleton's {name}, so {what}"
-                     if name in {p.name for p in lab.skeleton.iterdir()} else
-                     f"{name} {why}: it was left out of the build")
+        notes.append(replaced_note(name, why, exercises_in(lab.solution / name),
+                                   name in {p.name for p in lab.skeleton.iterdir()}))
     return sorted(flagged)
+
+
+def forbidden_call_reason(undefined):
+    """Why an object with these undefined symbols is graded as the skeleton's, or None: the
+    sentence `grade` and `check` both print."""
+    reached = forbidden_calls(undefined)
+    if not reached:
+        return None
+    what = sorted({w for _, w in reached})
+    called = sorted({d.split("(")[0] for d in demangle([s for s, _ in reached])})
+    return (f"calls {', '.join(called[:3])}, which reach {' and '.join(what)}: exercise code may compute, "
+            f"allocate and print, nothing more")
+
+
+def replaced_note(name, why, exercises, exercise_file=True):
+    """The note of a file graded as the skeleton's (or left out), the same in `grade` and `check`."""
+    if not exercise_file:
+        return f"{name} {why}: it was left out of the build"
+    what = f"exercise {', '.join(exercises)} scores 0" if exercises else "it was left out"
+    return f"{name} {why}: it is graded as the released skeleton's {name}, so {what}"
+
+
+REPLACED = "{name} was replaced by the released skeleton's file (see the note)"

@@ -18,7 +18,7 @@ import tempfile
 import threading
 import time
 
-from .sandbox import Sandbox, read_until_closed, tail
+from .sandbox import Sandbox, read_until_closed, reap, tail
 
 # The worker sees these variables and nothing else of the grader's environment.
 WORKER_ENV = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "TMPDIR": "/tmp", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1"}
@@ -61,7 +61,9 @@ def seccomp_filter(program):
     run = subprocess.run([program], capture_output=True)
     if run.returncode != 0 or not run.stdout or len(run.stdout) % 8:
         return None
-    handle, path = tempfile.mkstemp(prefix="springlab-seccomp-", suffix=".bpf")
+    # In this grader's stage, removed with it (staging.py).
+    from .staging import stage
+    handle, path = tempfile.mkstemp(prefix="springlab-seccomp-", suffix=".bpf", dir=stage().root)
     with os.fdopen(handle, "wb") as out:
         out.write(run.stdout)
     return path
@@ -129,7 +131,7 @@ class Fate:
         if self.returncode is None:
             return "it was still running at the time limit (an infinite loop, or far too much work)"
         if crash_signal(self.returncode) is not None:
-            return f"it crashed: {signal_name(crash_signal(self.returncode))}"
+            return f"it crashed: {signal_name(crash_signal(self.returncode), self.output)}"
         return f"its process exited with code {self.returncode} before the call returned (exit() or abort)"
 
 
@@ -140,6 +142,7 @@ class JudgedRun:
     judge_output: str
     worker: Fate
     seconds: float
+    cpu_seconds: float = 0.0  # judge and worker; the time limit when either was stopped at it
 
 
 # Every worker's command line, whatever test it runs (the test comes on its standard input).
@@ -188,9 +191,11 @@ class Launch:
     private: str
 
     def finish(self):
-        """Kill whatever is left of it (its process group) and remove its private folder."""
-        kill_group(self.proc)
+        """Kill whatever is left of it (its process group) and remove its private folder; its
+        CPU seconds (sandbox.reap)."""
+        cpu = kill_group(self.proc)
         shutil.rmtree(self.private, ignore_errors=True)
+        return cpu
 
 
 def launch_worker(program, test, sandbox: Sandbox, env, log, slot=0, seccomp=None):
@@ -288,30 +293,29 @@ def run_judged(judge, worker, test, sandbox: Sandbox, env, slot=0, seccomp=None)
         # The judge is done: the worker has nothing left to say.
         worker_code = wait_until(launch.proc, deadline if judge_code is None else time.monotonic() + 0.5)
         # bubblewrap's PID namespace ends with its first process: nothing of the worker is left.
-        kill_group(judge_proc)
-        launch.finish()
+        cpu = kill_group(judge_proc) + launch.finish()
+        if judge_code is None:
+            cpu = max(cpu, sandbox.timeout)  # stopped at the wall-time limit: it costs the limit
         seconds = time.monotonic() - start
         try:
             parsed = json.loads(report.decode("utf-8", "replace")) if report.strip() else None
         except ValueError:
             parsed = None
         return JudgedRun(parsed if isinstance(parsed, dict) else None, judge_code, read_tail(judge_log),
-                         Fate(worker_code, read_tail(worker_log)), seconds)
+                         Fate(worker_code, read_tail(worker_log)), seconds, cpu)
 
 
 def wait_until(proc, deadline):
-    try:
-        return proc.wait(timeout=max(0.0, deadline - time.monotonic()))
-    except subprocess.TimeoutExpired:
-        return None
+    return reap(proc, deadline)[0]
 
 
 def kill_group(proc):
+    """Kill a launched program's process group and reap it; its CPU seconds (sandbox.reap)."""
     try:
         os.killpg(proc.pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
         pass
-    proc.wait()
+    return reap(proc)[1] or 0.0
 
 
 def kill_user(uid):

@@ -29,12 +29,20 @@ from .sealed_compile import scrub, stop_reason
 from .staging import stage
 from .submission import SOURCE_SUFFIXES, collect_sources, locate_labs, unpack
 
-# The time budget of a lab: BUDGET_FLOOR seconds plus BUDGET_FACTOR times the reference's own
-# grading time (the sum of its tests' seconds), shared among its files (BudgetRule); a
+# The time budget of a lab's tests: BUDGET_FLOOR seconds plus BUDGET_FACTOR times the
+# reference's own CPU time on them, in CPU seconds, shared among its files (BudgetRule); a
 # submission's is the sum of its labs'. A judged test runs two processes and streams a trace,
-# about twice the reference's one process: 10 leaves five times that of slack (a loaded machine).
+# about twice the reference's one process: 10 leaves five times that of slack.
 BUDGET_FACTOR = 10.0
 BUDGET_FLOOR = 120.0
+# What a lab may cost a grading slot, whatever its code does: its compiles may use
+# COMPILE_BUDGET CPU seconds together (an honest exercise file takes a few), and the whole lab
+# (compiles, links, tests) LAB_WALL_LIMIT seconds of wall time, checked before each compile and
+# test. The worst case for one lab is therefore LAB_WALL_LIMIT plus one compile or test in
+# flight (sealed_compile.WALL_SECONDS at most) and its links: five minutes. An honest lab takes
+# under a minute cold on an idle machine.
+COMPILE_BUDGET = 60.0
+LAB_WALL_LIMIT = 240.0
 
 
 class LabGrader:
@@ -56,6 +64,8 @@ class LabGrader:
         self.notes = []
         self.links = 0
         self.timing = {"compile": 0.0, "link": 0.0, "test": 0.0}
+        self.compile_cpu = 0.0  # CPU seconds its compiles used (COMPILE_BUDGET)
+        self.compile_lock = threading.Lock()
 
     def grade(self, submitted):
         """Compile, check, link and test; a LabResult whatever the student's code does."""
@@ -99,7 +109,7 @@ class LabGrader:
         for name in integrity.find_cheats(list(objects.values()), self.work, build, lab, notes, others,
                                           call_check=self.call_check):
             objects.pop(name, None)
-            reasons[name] = f"{name} was replaced by the released skeleton's file (see the note)"
+            reasons[name] = integrity.REPLACED.format(name=name)
 
         if not per_file:
             results = self.grade_whole(objects, skeleton_objects, reasons)
@@ -197,7 +207,7 @@ class LabGrader:
             # spend the time of the others.
             share = None
             if self.budget is not None and self.budget_rule is not None:
-                share = Budget(self.budget_rule.share(tests, len(workers)), parent=self.budget.parent,
+                share = Budget(self.budget_rule.share(tests, len(workers)), parent=self.budget,
                                what=f"exercise file ({key})")
             mark = time.monotonic()
             for r in grade_judged(self.build.link.judges[key], str(binary), self.lab.manifest, self.seed,
@@ -283,7 +293,18 @@ class LabGrader:
         cached = self.cache.objects.fetch(key, private, name)
         if cached is not None:
             return cached, None
+        late = self.budget.past_wall_limit() if self.budget else None
+        if late is not None:
+            return None, (f"{name}: not compiled: the lab had already taken {late.wall:.0f} s of wall time, its "
+                          f"limit")
+        with self.compile_lock:
+            used = self.compile_cpu
+        if used >= COMPILE_BUDGET:
+            return None, (f"{name}: not compiled: the lab's files had already used {used:.0f} s of the compiler's "
+                          f"CPU time, its budget of {COMPILE_BUDGET:g} s (an exercise file compiles in seconds)")
         run = self.build.sealed.run(self.work, name, self.compile_sandbox)
+        with self.compile_lock:
+            self.compile_cpu += run.cpu_seconds
         stopped = stop_reason(run, name)
         if stopped:
             return None, stopped
@@ -379,7 +400,7 @@ def first_errors(output, lines=25):
 
 # ---- one submission --------------------------------------------------------------------------
 def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandbox, name=None, only=None,
-                     budgets=None, slot=0, call_check=True):
+                     budgets=None, slot=0, call_check=True, lab_wall_limit=LAB_WALL_LIMIT):
     """Grade a submission (a folder or a zip: a labs/ folder, a whole repository, lab folders
     or the flat files of one lab). `only`: the one lab to grade (--lab), the others are left
     out of the result; `budgets`: {lab name: its BudgetRule, or None for no budget}."""
@@ -411,7 +432,7 @@ def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandb
             os.chmod(work, 0o711)
             grader = LabGrader(cache, lab, work, sandbox, compile_sandbox, jobs, seed,
                                budget=Budget(budgets[lab.name].limit if budgets.get(lab.name) else None,
-                                             parent=total),
+                                             parent=total, wall=lab_wall_limit),
                                slot=slot, call_check=call_check, budget_rule=budgets.get(lab.name))
             grader.notes.extend(lab_notes)
             results.append(grader.grade(submitted))
@@ -437,6 +458,7 @@ class Session:
     budget_floor: float = BUDGET_FLOOR
     budgets: dict = dataclasses.field(default_factory=dict)
     call_check: bool = True     # integrity.FORBIDDEN_CALLS; off only to test the sandbox
+    lab_wall_limit: float = LAB_WALL_LIMIT
 
     def prepare(self):
         """Find each lab's build (compile flags, link, test list) and its time budget (a
@@ -454,11 +476,11 @@ class Session:
         self.prepare()
         return grade_submission(path, self.cache, self.labs, self.seed, jobs, self.sandbox, self.compile_sandbox,
                                 name=name, only=self.only, budgets=self.budgets, slot=slot,
-                                call_check=self.call_check)
+                                call_check=self.call_check, lab_wall_limit=self.lab_wall_limit)
 
 
 def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, memory_mb=4096, only=None,
-                  budget_factor=BUDGET_FACTOR, budget_floor=BUDGET_FLOOR, call_check=True):
+                  budget_factor=BUDGET_FACTOR, budget_floor=BUDGET_FLOOR, call_check=True, lab_wall_limit=LAB_WALL_LIMIT):
     labs = discover_labs()
     if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
         raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
@@ -472,7 +494,7 @@ def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, me
     if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
         raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
     return Session(labs, cache, sandbox, compile_sandbox, draw_seed(seed), only, budget_factor, budget_floor,
-                   call_check=call_check)
+                   call_check=call_check, lab_wall_limit=lab_wall_limit)
 
 
 def grade_class(session, entries, out, jobs, progress=sys.stderr):
