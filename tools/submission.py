@@ -99,7 +99,8 @@ def cmd_grade(args):
     for lab in graded.labs:
         print_lab(lab, quiet=args.quiet)
         if lab.timing:
-            print(f"  ({lab.seconds:.1f} s: compiling {lab.timing.get('compile', 0):.1f} s, "
+            print(f"  ({lab.seconds:.1f} s: compiling {lab.timing.get('compile', 0):.1f} s "
+                  f"({lab.timing.get('compile_cpu', 0):.1f} s of CPU), "
                   f"{lab.timing.get('links', 0)} links {lab.timing.get('link', 0):.1f} s, "
                   f"tests {lab.timing.get('test', 0):.1f} s)")
     percent = 100.0 * graded.score / graded.max_score if graded.max_score else 0.0

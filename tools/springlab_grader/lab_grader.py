@@ -120,6 +120,7 @@ class LabGrader:
         else:
             results = self.grade_per_file(objects, solution, file_exercises, reasons)
         self.timing["links"] = self.links
+        self.timing["compile_cpu"] = self.compile_cpu
         return LabResult(lab.manifest, results, notes, self.seed, time.monotonic() - started, dict(self.timing))
 
     @staticmethod
