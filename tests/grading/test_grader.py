@@ -196,6 +196,7 @@ class StudentReadmeStatesTheLimits(unittest.TestCase):
                        f"the stack {limits.stack_mb} MiB",
                        f"{sealed_compile.MEMORY_MB} MiB of memory, {sealed_compile.CPU_SECONDS} s of CPU time, "
                        f"{sealed_compile.WALL_SECONDS:g} s of wall time, {sealed_compile.OUTPUT_MB} MiB of object file",
+                       f"its compiles {lab_grader.COMPILE_BUDGET:g} s of CPU time",
                        f"{lab_grader.BUDGET_FACTOR:g} times the reference's CPU time plus {lab_grader.BUDGET_FLOOR:g} s",
                        f"{lab_grader.LAB_WALL_LIMIT:g} s of wall time in all"):
             self.assertIn(stated, " ".join(text.split()))

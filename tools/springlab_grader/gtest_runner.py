@@ -169,6 +169,20 @@ class Budget:
             return self
         return self.parent.exhausted() if self.parent else None
 
+    def wall_left(self):
+        """Seconds until the nearest wall-time limit (this budget's or an enclosing one's); None: none."""
+        own = None if self.wall is None else self.wall - (time.monotonic() - self.started)
+        outer = self.parent.wall_left() if self.parent else None
+        return min((x for x in (own, outer) if x is not None), default=None)
+
+    def limited(self, sandbox):
+        """The sandbox of a test started now: its time limit cut to the wall time left, so no
+        test runs past the limit. (sandbox, True when cut)."""
+        left = self.wall_left()
+        if left is None or left >= sandbox.timeout:
+            return sandbox, False
+        return dataclasses.replace(sandbox, timeout=max(0.1, left), cpu_seconds=sandbox.timeout + 2), True
+
     def past_wall_limit(self):
         """The budget (this one or an enclosing one) whose wall-time limit has passed, or None."""
         if self.wall is not None and time.monotonic() - self.started >= self.wall:
@@ -227,9 +241,13 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
         elif spent is not None:
             outcome = Outcome(False, spent.message(), 0.0)
         else:
-            outcome = run_test(binary, t["name"], seed, sandbox, slot=slot, seccomp=seccomp)
+            limited, cut = budget.limited(sandbox) if budget else (sandbox, False)
+            outcome = run_test(binary, t["name"], seed, limited, slot=slot, seccomp=seccomp)
             if budget:
                 budget.spend(outcome.cpu_seconds)
+                if cut and budget.past_wall_limit():
+                    outcome.message = budget.past_wall_limit().message().replace(", so this test was not run",
+                                                                                 ": this test was stopped there")
         message = redact(outcome.message) if t["visibility"] != "visible" and outcome.message else outcome.message
         result = TestResult(ex, t, outcome.passed, message, outcome.seconds, outcome.cpu_seconds)
         if on_result:
@@ -256,12 +274,16 @@ def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget
         if spent is not None:
             outcome = Outcome(False, spent.message(), 0.0)
         else:
-            run = run_judged(judge, worker, t["name"], sandbox,
+            limited, cut = budget.limited(sandbox) if budget else (sandbox, False)
+            run = run_judged(judge, worker, t["name"], limited,
                              {"SPRINGLAB_SEED": str(seed)}, slot=slot, seccomp=seccomp)
-            passed, message = outcome_of(run, t["name"], sandbox.timeout)
+            passed, message = outcome_of(run, t["name"], limited.timeout)
             outcome = Outcome(passed, message, run.seconds, run.cpu_seconds)
             if budget:
                 budget.spend(outcome.cpu_seconds)
+                if cut and not passed and budget.past_wall_limit():
+                    outcome.message = budget.past_wall_limit().message().replace(", so this test was not run",
+                                                                                 ": this test was stopped there")
         message = redact(outcome.message) if t["visibility"] != "visible" and outcome.message else outcome.message
         return TestResult(ex, t, outcome.passed, message, outcome.seconds, outcome.cpu_seconds)
 

@@ -36,13 +36,13 @@ from .submission import SOURCE_SUFFIXES, collect_sources, locate_labs, unpack
 BUDGET_FACTOR = 10.0
 BUDGET_FLOOR = 120.0
 # What a lab may cost a grading slot, whatever its code does: its compiles may use
-# COMPILE_BUDGET CPU seconds together (an honest exercise file takes a few), and the whole lab
-# (compiles, links, tests) LAB_WALL_LIMIT seconds of wall time, checked before each compile and
-# test. The worst case for one lab is therefore LAB_WALL_LIMIT plus one compile or test in
-# flight (sealed_compile.WALL_SECONDS at most) and its links: five minutes. An honest lab takes
-# under a minute cold on an idle machine.
-COMPILE_BUDGET = 60.0
-LAB_WALL_LIMIT = 240.0
+# COMPILE_BUDGET CPU seconds together (an honest exercise file takes about 3), and the whole lab
+# (compiles, links, tests) LAB_WALL_LIMIT seconds of wall time: no compile or test starts after
+# it, and none runs past it (each one's time limit is cut to what is left). The worst case for
+# one lab is therefore LAB_WALL_LIMIT and the links of what compiled in time (a second each):
+# under five minutes. An honest lab takes under a minute cold on an idle machine.
+COMPILE_BUDGET = 90.0
+LAB_WALL_LIMIT = 270.0
 
 
 class LabGrader:
@@ -303,7 +303,11 @@ class LabGrader:
         if used >= COMPILE_BUDGET:
             return None, (f"{name}: not compiled: the lab's files had already used {used:.0f} s of the compiler's "
                           f"CPU time, its budget of {COMPILE_BUDGET:g} s (an exercise file compiles in seconds)")
-        run = self.build.sealed.run(self.work, name, self.compile_sandbox)
+        # No compile runs past the lab's wall-time limit.
+        left = self.budget.wall_left() if self.budget else None
+        sandbox = self.compile_sandbox if left is None or left >= self.compile_sandbox.timeout else \
+            dataclasses.replace(self.compile_sandbox, timeout=max(0.1, left))
+        run = self.build.sealed.run(self.work, name, sandbox)
         with self.compile_lock:
             self.compile_cpu += run.cpu_seconds
         stopped = stop_reason(run, name)
