@@ -312,7 +312,7 @@ class Cache:
                              + tail(run.stdout + run.stderr, 40))
 
     # How the reference's times were counted (a record counted otherwise is measured again).
-    COUNTED = "CPU seconds of the test's processes (sandbox.reap)"
+    COUNTED = "CPU seconds of the test's processes, inside bubblewrap too (sandbox.reap, judged_run.Launch)"
 
     def reference_times(self, lab, sandbox):
         """The reference's own grading time for a lab ({test: seconds}), measured once on the
