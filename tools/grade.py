@@ -30,8 +30,8 @@ import tempfile
 import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from springlab_grader.call_check import REPLACED  # noqa: E402
 from springlab_grader.gtest_runner import check_binary_against_manifest, draw_seed, grade_binary  # noqa: E402
-from springlab_grader.integrity import REPLACED  # noqa: E402
 from springlab_grader.judged_run import bubblewrap, go_without_bubblewrap, starts_in_bubblewrap  # noqa: E402
 from springlab_grader.manifest import ManifestError, load_manifest  # noqa: E402
 from springlab_grader.reports import print_lab, write_outputs  # noqa: E402

@@ -38,7 +38,7 @@ INSTRUCTOR_ONLY = [
     "tools/springlab_grader/build_cache.py", "tools/springlab_grader/integrity.py",
     "tools/springlab_grader/lab_grader.py", "tools/springlab_grader/submission.py",
     "tools/springlab_grader/gradescope.py", "tools/springlab_grader/labs.py",
-    "tools/springlab_grader/errors.py",
+    "tools/springlab_grader/errors.py", "tools/springlab_grader/sealed_compile.py",
     # The judge and worker of graded tests (the call trace between them) and their generator.
     "tools/make_call_layer.py", "tests/support/call_trace*", "tests/support/judge_main.cpp",
     "tests/support/worker_main.cpp",

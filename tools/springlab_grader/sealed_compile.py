@@ -14,7 +14,7 @@ import signal
 
 from .errors import GradeError
 from .sandbox import Run, Sandbox, run_sandboxed
-from .staging import check_include_folder, stage
+from .staging import stage
 
 NEUTRAL = pathlib.PurePosixPath("/springlab")     # the framework's headers, inside
 SUBMISSION = pathlib.PurePosixPath("/submission")  # the submission's files and objects, inside
@@ -139,3 +139,14 @@ def scrub(text, places):
         if str(place) not in ("", "/"):
             text = text.replace(str(place), word)
     return re.sub(r"(?<![\w/])/submission/src/", "", text)
+
+
+def check_include_folder(folder, root):
+    """An include folder of the lab's compile may be staged only if it holds no part of the
+    grading tree beyond headers: never the tree itself or a folder above solutions/ or tests/."""
+    folder = pathlib.Path(folder).resolve()
+    for private in (root / "solutions", root / "tests"):
+        if private.resolve().is_relative_to(folder):
+            raise GradeError(f"the lab's compile flags include -I{folder}, which holds {private.name}/: the "
+                             f"compiler's sandbox would show the reference or the tests; include the framework's "
+                             f"header folders only")

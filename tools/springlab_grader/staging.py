@@ -12,8 +12,6 @@ import shutil
 import tempfile
 import threading
 
-from .errors import GradeError
-
 # Files of an include folder that are not headers: never staged (a compiler would not read
 # them through #include, and an include folder is no place for them).
 NOT_HEADERS = (".cpp", ".cc", ".cxx", ".c", ".o", ".a", ".so", ".json", ".py", ".txt", ".md")
@@ -85,14 +83,3 @@ def stage():
         if not _stage:
             _stage.append(Staging())
         return _stage[0]
-
-
-def check_include_folder(folder, root):
-    """An include folder of the lab's compile may be staged only if it holds no part of the
-    grading tree beyond headers: never the tree itself or a folder above solutions/ or tests/."""
-    folder = pathlib.Path(folder).resolve()
-    for private in (root / "solutions", root / "tests"):
-        if private.resolve().is_relative_to(folder):
-            raise GradeError(f"the lab's compile flags include -I{folder}, which holds {private.name}/: the "
-                             f"compiler's sandbox would show the reference or the tests; include the framework's "
-                             f"header folders only")

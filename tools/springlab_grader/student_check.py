@@ -1,4 +1,4 @@
-"""The call check of `check` (tools/grade.py), the same as `grade`'s (integrity.py): the
+"""The call check of `check` (tools/grade.py), the same as `grade`'s (call_check.py): the
 exercise objects of a student's own build are read for calls exercise code never needs, and a
 file that makes one is reported with the sentence `grade` prints, its exercises' tests failed
 as `grade` fails them. So a student learns the rule from `check`, never from a lost grade."""
@@ -7,8 +7,7 @@ import pathlib
 import re
 import shlex
 
-from . import integrity
-from .labs import exercises_in
+from . import call_check
 
 _TABLE_ROW = re.compile(r"^\|\s*(\d+\.\d+)\s*\|[^|]*\|\s*`([^`]+\.cpp)`\s*\|", re.M)
 
@@ -39,6 +38,7 @@ def exercises_by_file(tree, lab_dir):
     from the table of the lab folder's README (tools/make_skeleton.py writes it)."""
     solutions = pathlib.Path(tree) / "solutions" / lab_dir
     if solutions.is_dir():
+        from .labs import exercises_in  # the instructor's side only
         return {p.name: exercises_in(p) for p in sorted(solutions.glob("*.cpp"))}
     readme = pathlib.Path(tree) / "labs" / lab_dir / "README.md"
     table = {}
@@ -53,11 +53,11 @@ def forbidden_call_notes(binary, tree, lab_dir):
     objects = exercise_objects(binary)
     if not objects:
         return {}
-    undefined = integrity.symbols_by_file(list(objects.values()), undefined=True)
+    undefined = call_check.symbols_by_file(list(objects.values()), undefined=True)
     exercises = exercises_by_file(tree, lab_dir)
     flagged = {}
     for name, obj in sorted(objects.items()):
-        why = integrity.forbidden_call_reason(undefined[str(obj)])
+        why = call_check.forbidden_call_reason(undefined[str(obj)])
         if why:
-            flagged[name] = (integrity.replaced_note(name, why, exercises.get(name, [])), exercises.get(name, []))
+            flagged[name] = (call_check.replaced_note(name, why, exercises.get(name, [])), exercises.get(name, []))
     return flagged
