@@ -51,6 +51,7 @@ INSTRUCTOR_ONLY = [
 ]
 # The release's README.md: what a student reads first (labs, commands, points, Eigen, help).
 STUDENT_README = ROOT / "tools" / "templates" / "README.student.md"
+CLASSROOM_WORKFLOW = ROOT / "tools" / "templates" / "classroom.yml"
 NEVER_DIRS = ["build*", "out", ".git", "__pycache__", ".cache", ".vscode", ".idea"]
 NEVER_FILES = ["*.pyc"]
 
@@ -106,6 +107,10 @@ def release(out, force=False):
     if not STUDENT_README.is_file():
         raise ReleaseError(f"{STUDENT_README.relative_to(ROOT)}: the student README is missing")
     shutil.copy2(STUDENT_README, out / "README.md")
+    written += 1
+    # GitHub Classroom's autograding of the public tests (tests/grading/check_platforms.py).
+    (out / ".github" / "workflows").mkdir(parents=True, exist_ok=True)
+    shutil.copy2(CLASSROOM_WORKFLOW, out / ".github" / "workflows" / "classroom.yml")
     written += 1
     # labs/: generated now from solutions/, so the release can never hold a stale skeleton.
     labs = sorted(p.name for p in (ROOT / "solutions").iterdir() if p.is_dir())

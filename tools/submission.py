@@ -5,6 +5,8 @@
                                                          or a .zip of any of these
     tools/submission.py grade SUBMISSION --lab rope      that lab only (also: the flat files of that lab)
     tools/submission.py grade-all DIR [--out DIR]        every folder and .zip directly under DIR
+    tools/submission.py prairielearn [--grade-root /grade] PrairieLearn's external grader: grades
+                                                         /grade/student into /grade/results/results.json
 
 How: a cache build of the framework, the reference "oracle" and the grading tests' objects
 (build-grader/, built once and reused) is configured from this tree. For each submission and
@@ -41,6 +43,7 @@ The grader itself is the package tools/springlab_grader/; this is its command li
 tests/grading/check_release.py and check_new_exercise.py find labs through it: discover_labs).
 """
 import argparse
+import json
 import os
 import pathlib
 import sys
@@ -50,6 +53,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.errors import GradeError  # noqa: E402
 from springlab_grader.lab_grader import BUDGET_FACTOR, BUDGET_FLOOR, LAB_WALL_LIMIT, grade_class, start_session  # noqa: E402
 from springlab_grader.labs import ROOT, discover_labs  # noqa: E402,F401
+from springlab_grader.platforms import prairielearn_failure, prairielearn_results  # noqa: E402
 from springlab_grader.reports import print_lab, write_gradebook, write_submission  # noqa: E402
 from springlab_grader.sandbox import TIMEOUT  # noqa: E402
 from springlab_grader.submission import submissions_in  # noqa: E402
@@ -130,6 +134,26 @@ def cmd_grade_all(args):
     return 0
 
 
+def cmd_prairielearn(args):
+    """PrairieLearn's external grader: grade <root>/student, always leave <root>/results/results.json."""
+    root = pathlib.Path(args.grade_root)
+    results = root / "results"
+    results.mkdir(parents=True, exist_ok=True)
+    try:
+        session = setup(args)
+        graded = session.grade(root / "student", args.jobs, name="submission")
+        data = prairielearn_results(graded.labs, graded.notes, session.seed)
+        code = 0
+    except GradeError as error:
+        data, code = prairielearn_failure(f"The grader could not grade this submission: {error}"), 2
+    except Exception as error:  # noqa: BLE001 - the grader itself broke: still a results.json
+        data, code = prairielearn_failure(f"The grader failed ({type(error).__name__}: {error}); ask your "
+                                          f"instructor"), 2
+    (results / "results.json").write_text(json.dumps(data, indent=1) + "\n")
+    print(f"{data['message']}: {results / 'results.json'}")
+    return code
+
+
 def main():
     ap = argparse.ArgumentParser(prog="springlab", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -144,6 +168,10 @@ def main():
     many.add_argument("folder")
     many.add_argument("--out", help="folder for gradebook.csv and the reports (default: out/grades/<folder>/)")
     common_options(many)
+    learn = sub.add_parser("prairielearn", help="PrairieLearn's external grader: grade GRADE_ROOT/student into "
+                                                "GRADE_ROOT/results/results.json")
+    learn.add_argument("--grade-root", default="/grade", help="PrairieLearn's folder (default /grade)")
+    common_options(learn)
     prepare = sub.add_parser("prepare", help="build the grading cache only (the autograder's setup.sh)")
     common_options(prepare)
     args = ap.parse_args()
@@ -153,6 +181,8 @@ def main():
             session.prepare()
             print(f"grading cache ready in {session.cache.path}: {', '.join(lab.dir for lab in session.labs)}")
             return 0
+        if args.command == "prairielearn":
+            return cmd_prairielearn(args)
         return cmd_grade(args) if args.command == "grade" else cmd_grade_all(args)
     except GradeError as error:
         print(f"springlab grade: {error}", file=sys.stderr)
