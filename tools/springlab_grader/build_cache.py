@@ -365,6 +365,8 @@ class Cache:
         if not os.access(link.skeleton_program, os.X_OK):
             raise GradeError(f"{link.skeleton_program}: missing; was {lab.name}_grading_student built?")
         present = set(listed_tests(str(stage().program(link.skeleton_program)), sandbox))
+        for judge in link.judges.values():  # staged now, before graders run side by side
+            stage().program(judge)
         from .judged_run import bubblewrap
         return LabBuild(flags, link, present, defined_symbols([link.oracle]) if link.oracle else set(),
                         defined_symbols(protected), sealed_compiler(flags, ROOT, bubblewrap() is not None))

@@ -4,6 +4,7 @@ mount namespaces; only /usr, a private /tmp and the worker program visible; a cl
 environment; nothing left running afterwards), and the judge, a program without student code
 that replays the worker's call trace and decides. Only the judge's report counts."""
 import dataclasses
+import errno
 import fcntl
 import functools
 import json
@@ -19,6 +20,7 @@ import threading
 import time
 
 from .sandbox import Sandbox, read_until_closed, reap, tail
+from .staging import stage
 
 # The worker sees these variables and nothing else of the grader's environment.
 WORKER_ENV = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "TMPDIR": "/tmp", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1"}
@@ -62,7 +64,6 @@ def seccomp_filter(program):
     if run.returncode != 0 or not run.stdout or len(run.stdout) % 8:
         return None
     # In this grader's stage, removed with it (staging.py).
-    from .staging import stage
     handle, path = tempfile.mkstemp(prefix="springlab-seccomp-", suffix=".bpf", dir=stage().root)
     with os.fdopen(handle, "wb") as out:
         out.write(run.stdout)
@@ -106,6 +107,12 @@ def worker_uid(slot):
             else:
                 raise RuntimeError("no free worker user among 61000-64999")
         return _claimed[slot][0]
+
+
+def judge_uid(slot):
+    """The user a submission's judges run as when the grader is root: paired with its workers'
+    user (worker_uid, whose lock it shares), 4000 below it, so never a worker's."""
+    return worker_uid(slot) - 4000
 
 
 def crash_signal(returncode):
@@ -319,11 +326,17 @@ def run_judged(judge, worker, test, sandbox: Sandbox, env, slot=0, seccomp=None)
     with tempfile.TemporaryFile() as judge_log, tempfile.TemporaryFile() as worker_log:
         launch = launch_worker(worker, test, sandbox, env, worker_log, slot=slot, seccomp=seccomp)
         trace_r = launch.channel
-        judge_proc = subprocess.Popen(
-            [judge, f"--gtest_filter={test}", *WORKER_ARGS, f"--springlab-report=/dev/fd/{report_w}"],
-            env={**WORKER_ENV, **env, "SPRINGLAB_CALL_TRACE_FD": str(trace_r)},
+        # The judge runs no student code but reads what it sent: it runs unprivileged too, as a
+        # user of its own (never the worker's, who could then reach it), from the stage.
+        uid = judge_uid(slot) if os.geteuid() == 0 else None
+        if uid is not None:
+            os.fchown(report_w, uid, uid)  # it opens /dev/fd/N: the pipe must be its own
+        judge_proc = start_retrying(
+            [str(stage().program(judge)), f"--gtest_filter={test}", *WORKER_ARGS,
+             f"--springlab-report=/dev/fd/{report_w}"],
+            env={**WORKER_ENV, **env, "SPRINGLAB_CALL_TRACE_FD": str(trace_r)}, cwd="/",
             stdin=subprocess.DEVNULL, stdout=judge_log, stderr=subprocess.STDOUT, pass_fds=(trace_r, report_w),
-            process_group=0, preexec_fn=limited)
+            process_group=0, preexec_fn=limited, user=uid, group=uid, extra_groups=[] if uid else None)
         for fd in (trace_r, report_w):
             os.close(fd)
         deadline = start + sandbox.timeout
@@ -343,6 +356,19 @@ def run_judged(judge, worker, test, sandbox: Sandbox, env, slot=0, seccomp=None)
             parsed = None
         return JudgedRun(parsed if isinstance(parsed, dict) else None, judge_code, read_tail(judge_log),
                          Fate(worker_code, read_tail(worker_log)), seconds, cpu)
+
+
+def start_retrying(argv, **options):
+    """subprocess.Popen, tried again while the program is "busy": a program just copied to the
+    stage may still be open for writing in a child another thread forked meanwhile (ETXTBSY
+    until that child execs)."""
+    for attempt in range(50):
+        try:
+            return subprocess.Popen(argv, **options)
+        except OSError as error:
+            if error.errno != errno.ETXTBSY or attempt == 49:
+                raise
+            time.sleep(0.02)
 
 
 def wait_until(proc, deadline):
