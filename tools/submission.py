@@ -11,7 +11,9 @@
 How: a cache build of the framework, the reference "oracle" and the grading tests' objects
 (build-grader/, built once and reused) is configured from this tree. For each submission and
 each lab, only the student's exercise files (the .cpp files of the released labs/<dir>/) are
-compiled (in a sandbox, as `nobody` when root), against the framework's headers, and linked
+compiled in the compiler's sandbox (bubblewrap as `nobody`: the toolchain, copies of the
+framework's headers and the submission's own files, nothing else; limits on memory, CPU time
+and output: tools/springlab_grader/sealed_compile.py), and linked
 with the lab's given objects (framework/labs/<name>/, compiled once) and the cached objects
 into a worker program per exercise file; any other file of the submission is ignored and the
 report says so. Every grading test then runs twice: in the worker, inside bubblewrap, which
