@@ -16,15 +16,26 @@ namespace springlab::trace {
 namespace {
 
 // Writer and Reader are one per process and take their descriptor from the environment: a
-// forked child plays the worker, this process the judge, joined by a pipe.
-TEST(CallTrace, ValuesExceptionsAndLiesBetweenWorkerAndJudge) {
+// forked child plays the worker (`send` writes its trace), this process the judge, joined by a
+// pipe. (One test per process, as ctest runs them.)
+template <class Send>
+void playWorker(Send&& send) {
   int fds[2];
   ASSERT_EQ(::pipe(fds), 0);
-  const pid_t child = ::fork();
-  if (child == 0) {
+  if (::fork() == 0) {
     ::close(fds[0]);
     ::setenv("SPRINGLAB_CALL_TRACE_FD", std::to_string(fds[1]).c_str(), 1);
     Writer& w = Writer::instance();
+    send(w);
+    w.flush();
+    std::_Exit(0);
+  }
+  ::close(fds[1]);
+  ::setenv("SPRINGLAB_CALL_TRACE_FD", std::to_string(fds[0]).c_str(), 1);
+}
+
+TEST(CallTrace, ValuesExceptionsAndLiesBetweenWorkerAndJudge) {
+  playWorker([](Writer& w) {
     // A return: a vector of springs, a Vec3, a bool.
     beginRecord(w, 7, Outcome::Returned);
     put(w, std::vector<Spring>{{0, 1, 10.0, 0.5, 0.1, SpringKind::Shear}, {1, 2, 20.0, 0.25, 0.0, SpringKind::Bend}});
@@ -52,11 +63,7 @@ TEST(CallTrace, ValuesExceptionsAndLiesBetweenWorkerAndJudge) {
     putSize(w, std::size_t{1} << 40);
     // A record of another function than the judge expects.
     beginRecord(w, 99, Outcome::Returned);
-    w.flush();
-    std::_Exit(0);
-  }
-  ::close(fds[1]);
-  ::setenv("SPRINGLAB_CALL_TRACE_FD", std::to_string(fds[0]).c_str(), 1);
+  });
   Reader& r = Reader::instance();
 
   replayCall(7, "buildNet");
@@ -105,13 +112,7 @@ using Pairs = std::vector<std::pair<int, int>>;
 // Forged records, as a worker that writes to the channel itself could send them: each fails
 // the judge's test with a sentence, and the judge goes on (no crash, nothing allocated).
 TEST(CallTrace, ForgedRecordsFailTheTestWithASentence) {
-  int fds[2];
-  ASSERT_EQ(::pipe(fds), 0);
-  const pid_t child = ::fork();
-  if (child == 0) {
-    ::close(fds[0]);
-    ::setenv("SPRINGLAB_CALL_TRACE_FD", std::to_string(fds[1]).c_str(), 1);
-    Writer& w = Writer::instance();
+  playWorker([](Writer& w) {
     // The right function, springs whose ends lie past the three masses it gives back.
     beginRecord(w, 3, Outcome::Returned);
     put(w, std::vector<Spring>{{0, 1, 1.0, 1.0, 0.0, SpringKind::Structural}, {1, 1000000000, 1.0, 1.0, 0.0,
@@ -137,11 +138,7 @@ TEST(CallTrace, ForgedRecordsFailTheTestWithASentence) {
     // A record cut short: its function and half a Vec3.
     beginRecord(w, 10, Outcome::Returned);
     put(w, 1.0);
-    w.flush();
-    std::_Exit(0);
-  }
-  ::close(fds[1]);
-  ::setenv("SPRINGLAB_CALL_TRACE_FD", std::to_string(fds[0]).c_str(), 1);
+  });
   Reader& r = Reader::instance();
 
   EXPECT_NONFATAL_FAILURE(
