@@ -728,6 +728,20 @@ class SealedCompile(Temp):
             self.sc.sealed_compiler(["/usr/bin/c++", f"-I{self.tree}"], self.tree, True)
 
 
+class StagesOfEndedGradersGo(Temp):
+    def test_a_stage_whose_grader_ended_is_removed(self):
+        import subprocess  # noqa: PLC0415
+        from springlab_grader import staging  # noqa: PLC0415
+        ended = subprocess.Popen(["true"])
+        ended.wait()
+        for name, pid in (("springlab-stage-ended", ended.pid), ("springlab-stage-alive", __import__("os").getpid())):
+            (self.tmp / name).mkdir()
+            (self.tmp / name / "pid").write_text(str(pid))
+        staging.remove_stale_stages(self.tmp)
+        self.assertFalse((self.tmp / "springlab-stage-ended").exists())
+        self.assertTrue((self.tmp / "springlab-stage-alive").exists())
+
+
 class SymlinkedLabFolders(Temp):
     """A lab folder (or labs/) that is a symbolic link, absolute or relative, at any depth, is
     never followed, and the note does not print where it leads."""

@@ -21,8 +21,10 @@ class Staging:
     """This grader's folder of copies the sandbox may reach."""
 
     def __init__(self):
-        self.root = pathlib.Path(tempfile.mkdtemp(prefix="springlab-stage-"))
+        remove_stale_stages()
+        self.root = pathlib.Path(tempfile.mkdtemp(prefix=PREFIX))
         os.chmod(self.root, 0o711)
+        (self.root / "pid").write_text(str(os.getpid()))
         self.lock = threading.Lock()
         self.programs = {}
         self.header_folders = {}
@@ -71,6 +73,24 @@ class Staging:
                     os.chmod(sub, 0o755)
                 self.header_folders[folder] = copy
             return self.header_folders[folder]
+
+
+PREFIX = "springlab-stage-"
+
+
+def remove_stale_stages(folder=None):
+    """Remove the stages of graders that ended without removing theirs (killed): each names
+    its grader's process in its pid file."""
+    for stale in pathlib.Path(folder or tempfile.gettempdir()).glob(f"{PREFIX}*"):
+        try:
+            if stale.stat().st_uid != os.geteuid():
+                continue  # another user's grader
+            pid = int((stale / "pid").read_text())
+            os.kill(pid, 0)  # still running: its stage stays
+        except ProcessLookupError:
+            shutil.rmtree(stale, ignore_errors=True)
+        except (OSError, ValueError, KeyError):
+            continue
 
 
 _stage = []
