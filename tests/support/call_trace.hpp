@@ -185,9 +185,23 @@ void put(Writer& w, const std::vector<T, Alloc>& v) {
   putSize(w, v.size());
   for (const auto& x : v) put(w, x);
 }
+// The fewest bytes one element of T takes in the trace: a count of more than the trace can
+// still hold is refused before anything is read.
+template <class T>
+constexpr std::size_t leastBytes() {
+  if constexpr (Plain<T>) {
+    return std::is_same_v<T, bool> ? 1 : sizeof(T);
+  } else if constexpr (requires { T::SizeAtCompileTime; typename T::Scalar; }) {
+    return T::SizeAtCompileTime > 0 ? sizeof(typename T::Scalar) * T::SizeAtCompileTime : 1;
+  } else {
+    return 1;
+  }
+}
+
 template <class T, class Alloc>
 void get(Reader& r, std::vector<T, Alloc>& v) {
   const std::size_t n = getSize(r);
+  if (n > r.remaining() / leastBytes<T>()) malformed("a vector of " + std::to_string(n) + " elements");
   // A vector the judge passed in with elements (a written argument: forces, positions) keeps
   // its size: the code after the call indexes it as it was.
   if (!v.empty() && n != v.size())

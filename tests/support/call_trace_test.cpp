@@ -130,9 +130,10 @@ TEST(CallTrace, ForgedRecordsFailTheTestWithASentence) {
     put(w, 0), put(w, 1), put(w, 1.0), put(w, 1.0), put(w, 0.0), put(w, 99);
     beginRecord(w, 7, Outcome::Returned);
     put(w, std::uint8_t{7});
-    // A written vector of forces that comes back shorter than it was given.
+    // A written vector of forces that comes back shorter than it was given (refused at its
+    // count: its element is left out, so the records after it stay in step).
     beginRecord(w, 8, Outcome::Returned);
-    put(w, std::vector<Vec3>(1, Vec3::Zero()));
+    putSize(w, 1);
     // An outcome that is none.
     beginRecord(w, 9, static_cast<Outcome>(200));
     // A record cut short: its function and half a Vec3.
