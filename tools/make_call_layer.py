@@ -138,6 +138,9 @@ def generate(manifest, out):
                            + "".join(f"  put(w, v.{x});\n" for x in fields) + "}\n")
         values_text.append(f"inline void get(trace::Reader& r, {t}& v) {{\n  using trace::get;\n{binding}"
                            + "".join(f"  get(r, v.{x});\n" for x in fields) + "}\n")
+        # The judge looks into the struct for indices and points (trace::checkReplayedIndices).
+        values_text.append(f"template <class F>\nvoid forEachField(const {t}& v, F&& f) {{\n"
+                           + "".join(f"  f(v.{x});\n" for x in fields) + "}\n")
     values_text.append(f"}}  // namespace springlab::{lab}\n")
     write(out / "values.hpp", "".join(values_text))
 
@@ -187,9 +190,12 @@ def generate(manifest, out):
             if f.ret != "void":
                 body.append(f"  {f.ret} result{{}};\n  get(r, result);\n")
             body += [f"  get(r, {p.name});\n" for p in f.params if p.written]
+            checked = (["result"] if f.ret != "void" else []) + [p.name for p in f.params]
+            if checked:
+                body.append(f"  trace::checkReplayedIndices({', '.join(checked)});\n")
             if f.ret != "void":
                 body.append("  return result;\n")
-            text.append(f"{f.signature(f.name, unnamed=True)} {{\n{''.join(body)}}}\n\n")
+            text.append(f"{f.signature(f.name)} {{\n{''.join(body)}}}\n\n")
         text.append(f"}}  // namespace springlab::{lab}\n")
         write(out / f"{stem}.replay.cpp", "".join(text))
 

@@ -17,14 +17,25 @@ def crash_signal(returncode):
     return None
 
 
-def signal_name(number):
+def signal_name(number, output=""):
+    """A sentence for the signal that ended a test process, naming the sandbox's limit when one
+    stopped it (sandbox.Sandbox: per test TIMEOUT s of wall time and that plus 2 s of CPU time,
+    4096 MiB of memory, 64 MiB per file written; the worker's seccomp filter)."""
+    from .sandbox import Sandbox
+    limits = Sandbox()
+    if number == signal.SIGABRT and "bad_alloc" in output:
+        return (f"out of memory: the sandbox allows {limits.memory_mb} MiB of memory per test, and an allocation "
+                f"beyond it failed (std::bad_alloc)")
     names = {signal.SIGSEGV: "segmentation fault (SIGSEGV): an invalid memory access, or a stack overflow from "
-                             "too deep a recursion",
+                             f"too deep a recursion (the stack may hold {limits.stack_mb} MiB)",
              signal.SIGABRT: "aborted (SIGABRT): abort(), a failed assert, or an exception nobody caught",
              signal.SIGFPE: "arithmetic error (SIGFPE), e.g. an integer division by zero",
-             signal.SIGKILL: "killed (SIGKILL): the memory or CPU time limit",
-             signal.SIGXCPU: "CPU time limit exceeded (SIGXCPU)",
-             signal.SIGXFSZ: "wrote more output than allowed (SIGXFSZ)",
+             signal.SIGKILL: f"killed (SIGKILL) at a limit of the sandbox: {limits.memory_mb} MiB of memory, or "
+                             f"the CPU time of {limits.timeout:g} s per test",
+             signal.SIGXCPU: f"stopped at the sandbox's CPU-time limit (SIGXCPU): {limits.timeout:g} s per test",
+             signal.SIGXFSZ: f"stopped at the sandbox's output limit (SIGXFSZ): a test may write {limits.file_mb} MiB",
+             signal.SIGSYS: "stopped by the sandbox (SIGSYS): a system call exercise code may not make (new "
+                            "processes, other processes' memory, sockets, mounts: the student README lists them)",
              signal.SIGBUS: "bus error (SIGBUS): an invalid memory access"}
     return names.get(number, f"signal {number}")
 
