@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "springlab/studies/parallel.hpp"
+#include "parallel.hpp"
 
 namespace springlab::studies {
 

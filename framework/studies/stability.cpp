@@ -6,7 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "springlab/studies/parallel.hpp"
+#include "parallel.hpp"
 
 namespace springlab::studies {
 
