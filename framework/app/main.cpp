@@ -9,6 +9,7 @@
 #include <iostream>
 #include <system_error>
 
+#include <springlab/energy_source.hpp>
 #include <springlab/recorder.hpp>
 #include <springlab/registry.hpp>
 
@@ -96,6 +97,9 @@ int runSim(const Registry& registry, const SimOptions& o) {
             << seconds << " s wall, " << (seconds > 0 ? static_cast<double>(o.steps) / seconds : 0.0)
             << " steps/s; total energy " << e.total() << " J; wrote " << o.out << "\n";
   if (o.profile) printProfile(sim, o.steps);
+  // A run that did not blow up can still be wrong: a force that feeds energy in (a wind with
+  // its sign turned) is named.
+  if (const auto warning = energySourceWarning(sim)) std::cerr << "springlab sim: warning: " << *warning << "\n";
   return 0;
 }
 
