@@ -90,11 +90,17 @@ def main():
     proc, text = springlab("check", "rope")
     expect("check rope", proc, text, proc.returncode == 0, "(100.0 %")
     viewer = "SPRINGLAB_BUILD_VIEWER:BOOL=ON" in (tree / "build" / "CMakeCache.txt").read_text()
-    if viewer and shutil.which("xvfb-run"):
+    if viewer and shutil.which("Xvfb"):
         proc, text = springlab("run", "rope", "--frames", "2")
         expect("run rope", proc, text, proc.returncode == 0, "snapshot written")
     else:
-        print("run rope: skipped (no viewer in this build, or no xvfb-run)")
+        print("run rope: skipped (no viewer in this build, or no Xvfb)")
+
+    # --reference in a student tree says at once that the tree has no solutions/ (exit 2),
+    # instead of a build failure with no compiler message above it.
+    proc, text = springlab("sim", "scenes/rope.json", "--reference", "--steps", "10", "--out", "out/ref.json")
+    expect("sim --reference", proc, text, proc.returncode == 2 and "build failed" not in text,
+           "solutions/, which a student tree does not have")
 
     # Lab 3 builds on Lab 1, not on Lab 2: its scene builds and runs (exit 3 names the first
     # of its exercises still a stub).

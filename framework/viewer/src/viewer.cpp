@@ -25,6 +25,7 @@
 #include <optional>
 #include <string>
 
+#include "springlab/energy_source.hpp"
 #include "springlab/frequency_estimate.hpp"
 
 #include "camera.hpp"
@@ -215,6 +216,12 @@ class Viewer : public LiveViewer {
   std::optional<MissingExercise> missing_;
   std::string runErrorHeadline_;
   std::string runError_;  // empty while the run is fine
+  bool blewUp_ = false;   // the run stopped on a blow-up (a headless run then exits 4, as `sim`)
+  // A force term that feeds energy in (energySourceWarning), tested every kEnergyCheckFrames
+  // stepped frames and named once on the terminal.
+  static constexpr long kEnergyCheckFrames = 60;
+  long steppedFrames_ = 0;
+  bool energyWarned_ = false;
   std::optional<double> maxAngularFrequency_;  // rad/s, cached Lanczos estimate for the dt warning
   // The HUD's energies and observables, and the simulated time and wall time they are of.
   struct HudNumbers {
@@ -257,6 +264,7 @@ void Viewer::guarded(F&& f) {
     missing_ = missingFrom(e);
   } catch (const BlowUp& e) {
     control_.paused = true;
+    blewUp_ = true;
     runErrorHeadline_ = "Paused";
     runError_ = e.what();
     std::cerr << "springlab view: " << e.what() << "\n";
@@ -499,6 +507,8 @@ int Viewer::finish() {
               << ") is not implemented yet; see " << missing_->handoutSection << "\n";
     exitCode = 3;
   }
+  // ... and 4 after a blow-up (the message is above, and on the snapshot's panel).
+  if (options_.frames > 0 && exitCode == 0 && blewUp_) exitCode = 4;
   return exitCode;
 }
 
@@ -687,6 +697,12 @@ void Viewer::advance() {
     }
     if (grabbing) grabFrom_ = grabTarget_;
     if (moving) shapeFrom_ = shapeTarget_;
+    if (!energyWarned_ && ++steppedFrames_ % kEnergyCheckFrames == 0) {
+      if (const auto warning = energySourceWarning(*sim)) {
+        std::cerr << "springlab view: warning: " << *warning << "\n";
+        energyWarned_ = true;
+      }
+    }
   });
 }
 
