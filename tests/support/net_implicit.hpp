@@ -18,14 +18,14 @@ class OneSpring final : public Simulation {
  public:
   OneSpring(double m, double k, double L0, double kd) : Simulation(3) {
     masses = {Mass{m, true}, Mass{m, false}};
-    springs = {Spring{1, 0, k, L0, kd, SpringKind::Structural}};
+    editSprings() = {Spring{1, 0, k, L0, kd, SpringKind::Structural}};
     state.pos = {Vec3::Zero(), Vec3(L0, 0, 0)};
     state.vel = {Vec3::Zero(), Vec3::Zero()};
     markInitialState();
   }
   std::string kind() const override { return "one spring"; }
   bool addForceJacobian(const State& s, ForceJacobian& J) override {
-    const Spring& sp = springs[0];
+    const Spring& sp = springs()[0];
     const auto j = net::springJacobian(s.pos[1], s.pos[0], sp.springConstant, sp.springLength, sp.frictionConstant);
     J.pairs.push_back({1, 0, j.dx, j.dv});
     return true;
@@ -33,7 +33,7 @@ class OneSpring final : public Simulation {
 
  protected:
   void accumulateForces(const State& s, std::vector<Vec3>& f) override {
-    const Spring& sp = springs[0];
+    const Spring& sp = springs()[0];
     f[1] += net::springDamperForce(s.pos[1], s.pos[0], s.vel[1], s.vel[0], sp.springConstant, sp.springLength, sp.frictionConstant);
   }
 };
