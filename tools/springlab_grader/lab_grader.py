@@ -292,7 +292,11 @@ class LabGrader:
         """Compile src/<name> to an object in the compiler's sandbox (sealed_compile.py), or
         reuse the same compile of an earlier submission."""
         flags = self.build.compile_argv + ["-Isrc"]
-        key = self.cache.objects.key(flags, name, data, headers)
+        # The key holds where the sandbox shows each include folder too: an object's dependency
+        # file names those places, and the include check reads them (a tree elsewhere, as a
+        # Gradescope bundle is, may show the same folders at other places).
+        shown = [str(inside) for _, inside in self.build.sealed.binds] + [str(self.build.sealed.sealed)]
+        key = self.cache.objects.key(flags + shown, name, data, headers)
         private = self.work / "objects"  # the grader's copies, out of the sandbox user's reach
         private.mkdir(exist_ok=True)
         cached = self.cache.objects.fetch(key, private, name)
