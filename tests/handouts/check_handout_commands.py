@@ -37,6 +37,8 @@ SKIP = [
 EXPECTED_EXIT = [
     (r"^\./springlab sim scenes/net_thesis\.json .*--integrator explicit_euler", 4,
      "section 5: explicit Euler blows up on the thesis' cloth at dt = 1/60 s (exit 4, blow-up)"),
+    (r"^\./springlab run rope --integrator explicit_euler --dt 0\.0005", 4,
+     "section 5: explicit Euler blows up on the rope at dt = 0.5 ms; the headless run says so (exit 4)"),
 ]
 TIME_CAP_S = 240  # per command: a `run` renders 240 frames; a `check` runs a lab's tests
 
