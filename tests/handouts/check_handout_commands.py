@@ -32,6 +32,8 @@ import time
 SKIP = [
     (r"^\./springlab bench\b", "times the reference for about 3 minutes (Google Benchmark); "
                                "bench.springlab_bench.report_from_one_quick_run covers it"),
+    (r"^\./springlab (web|site)\b", "builds with Emscripten for minutes; web.pages and web.site build "
+                                      "and test the same pages and site"),
 ]
 # Commands whose point is to fail in a known way: (regex, exit code, why the handout shows it).
 EXPECTED_EXIT = [
