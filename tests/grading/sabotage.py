@@ -527,7 +527,7 @@ def check(out, expect, labs):
             problems.append(f"{student}: results.json unreadable: {error}")
     if problems:
         return problems
-    declared = [(lab.dir, t["name"]) for lab in labs if lab.dir == TARGET_LAB
+    declared = [(lab.manifest["lab"], t["name"]) for lab in labs if lab.dir == TARGET_LAB
                 for ex in lab.manifest["exercises"] for t in ex["tests"]]
 
     def outcomes(student):
