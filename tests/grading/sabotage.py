@@ -527,12 +527,14 @@ def check(out, expect, labs):
             problems.append(f"{student}: results.json unreadable: {error}")
     if problems:
         return problems
-    declared = [(lab.manifest["lab"], t["name"]) for lab in labs if lab.dir == TARGET_LAB
+    declared = [(lab.dir, t["name"]) for lab in labs if lab.dir == TARGET_LAB
                 for ex in lab.manifest["exercises"] for t in ex["tests"]]
 
     def outcomes(student):
         tests = results[student]["tests"]
-        return {(t["tags"][0], t["name"].split(" ", 1)[1]): t["status"] for t in tests}
+        # A test's first tag is its lab's id; the suite names labs by folder.
+        folder_of = {lab.manifest["lab"]: lab.dir for lab in labs}
+        return {(folder_of.get(t["tags"][0], t["tags"][0]), t["name"].split(" ", 1)[1]): t["status"] for t in tests}
 
     for student, data in results.items():
         problems += [f"{student}: {p}" for p in schema_problems(data)]
