@@ -122,9 +122,7 @@ class Xpbd final : public Integrator {
     for (std::size_t c = 0; c < springs; ++c) order_[static_cast<std::size_t>(count[static_cast<std::size_t>(colourOf[c])]++)] = static_cast<int>(c);
   }
 
-  // `flatten` inlines exercise 2.11 into the sweep where the compiler sees it (the reference
-  // is one unit), as Net's force loop does with 2.2.
-  [[gnu::flatten]] void substep(Simulation& sim, double h) {
+  void substep(Simulation& sim, double h) {
     State& s = sim.state;
     const int n = sim.numOfMasses();
 
