@@ -99,7 +99,7 @@ void timeSteps(benchmark::State& bench, Simulation& sim, double dt, int warmup) 
   bench.counters["cg_iterations"] = static_cast<double>(sim.stats.solverIterations - before.solverIterations) / steps;
   bench.counters["force_evals"] = static_cast<double>(sim.stats.forceEvaluations - before.forceEvaluations) / steps;
   bench.counters["masses"] = sim.numOfMasses();
-  bench.counters["springs"] = static_cast<double>(sim.springs.size());
+  bench.counters["springs"] = static_cast<double>(sim.springs().size());
 }
 
 void timeScene(benchmark::State& bench, const std::string& file, const std::vector<std::string>& sets, int warmup) {

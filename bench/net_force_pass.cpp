@@ -12,7 +12,7 @@ namespace {
 // first mass), and per mass its position, velocity and force (zeroed, then added to).
 double trafficBytes(const Simulation& sim) {
   const double n = sim.numOfMasses();
-  return static_cast<double>(sim.springs.size() * 3 * sizeof(double)) + n * 4.0 * sizeof(Vec3);
+  return static_cast<double>(sim.springs().size() * 3 * sizeof(double)) + n * 4.0 * sizeof(Vec3);
 }
 
 void SpringForcePass(benchmark::State& bench) {
@@ -25,7 +25,7 @@ void SpringForcePass(benchmark::State& bench) {
     sim.evaluateForces(sim.state, sim.force);
     benchmark::ClobberMemory();
   }
-  const double springs = static_cast<double>(sim.springs.size());
+  const double springs = static_cast<double>(sim.springs().size());
   bench.counters["springs"] = springs;
   bench.counters["masses"] = sim.numOfMasses();
   bench.counters["bytes_per_spring"] = trafficBytes(sim) / springs;

@@ -27,6 +27,8 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
 import handout_check  # noqa: E402
 import make_skeleton  # noqa: E402
+from springlab_grader import labs  # noqa: E402
+from springlab_grader.errors import GradeError  # noqa: E402
 from springlab_grader.manifest import ManifestError, load_manifest  # noqa: E402
 
 # Written split so that this file is not itself a leftover placeholder.
@@ -35,29 +37,21 @@ SKIP_DIRS = {".git", "out", "__pycache__", ".cache"}
 TEXT_SUFFIXES = {".cpp", ".hpp", ".h", ".md", ".json", ".txt", ".py", ".cmake", ".sh", ".in", ""}
 
 
-class Lab:
-    def __init__(self, name, folder):
-        self.name, self.dir = name, folder
-
-
 def labs_of_tree():
-    """The labs CMakeLists.txt declares (springlab_add_lab(NAME rope DIR 01_rope))."""
-    text = (ROOT / "CMakeLists.txt").read_text()
-    return [Lab(n, d) for n, d in re.findall(r"^\s*springlab_add_lab\(\s*NAME\s+(\w+)\s+DIR\s+(\w+)\s*\)", text, re.M)]
+    """The labs of the tree, one per manifest (tests/NN_<id>/exercises.json)."""
+    try:
+        return labs.discover_labs(ROOT)
+    except GradeError as error:
+        raise SystemExit(f"author_check: {error}") from None
 
 
 def pick_labs(names):
-    labs = labs_of_tree()
-    if not names:
-        return labs
-    picked = []
-    for which in names:
-        which = {"lab1": "rope", "lab2": "net", "lab3": "softbody"}.get(which, which)
-        found = [lab for lab in labs if which in (lab.name, lab.dir)]
-        if not found:
-            raise SystemExit(f"author_check: no lab '{which}'; labs: {', '.join(lab.name for lab in labs)}")
-        picked += found
-    return picked
+    """The labs named (by id, or an older spelling: folder, lab<number>); every lab without names."""
+    every = labs_of_tree()
+    try:
+        return [labs.find_lab(every, which) for which in names] or every
+    except GradeError as error:
+        raise SystemExit(f"author_check: {error}") from None
 
 
 def rel(path):

@@ -6,10 +6,12 @@ this instructor tree under springlab/ (Gradescope unzips it into /autograder/sou
     tools/autograder.py OUT.zip --lab rope    one assignment per lab: this lab only
 
 setup.sh installs the Debian packages, builds the grading cache once (framework, reference
-oracle, test objects) and makes solutions/ and the hidden tests unreadable to other users.
-run_autograder grades /autograder/submission with tools/submission.py as root, which compiles
-the student's code as `nobody`, runs it in bubblewrap as a user of its own and takes every
-verdict from a judge program that runs no student code, and always leaves
+oracle, test objects) and makes the whole tree unreadable to other users (build-grader/
+included). run_autograder grades /autograder/submission with tools/submission.py as root,
+which compiles the student's code in bubblewrap as `nobody` (seeing only the toolchain, the
+framework's headers and the submission), runs it in bubblewrap as a user of its own and takes
+every verdict from a judge program that runs no student code (as a user of its own too), and
+always leaves
 /autograder/results/results.json: when the grader itself fails, a zero score that says why.
 (The bundle itself: tools/springlab_grader/gradescope.py.)
 """
@@ -27,7 +29,7 @@ def main():
     ap = argparse.ArgumentParser(prog="springlab autograder", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out", help="the bundle to write, e.g. autograder.zip")
-    ap.add_argument("--lab", help="grade this lab only (rope or 01_rope): one Gradescope assignment per lab")
+    ap.add_argument("--lab", help="grade this lab only (its id: rope): one Gradescope assignment per lab")
     args = ap.parse_args()
     if not (ROOT / "solutions").is_dir():
         print("springlab autograder: this tree has no solutions/: bundle the instructor tree", file=sys.stderr)

@@ -30,12 +30,15 @@ import tempfile
 import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from springlab_grader.call_check import REPLACED  # noqa: E402
 from springlab_grader.gtest_runner import check_binary_against_manifest, draw_seed, grade_binary  # noqa: E402
 from springlab_grader.judged_run import bubblewrap, go_without_bubblewrap, starts_in_bubblewrap  # noqa: E402
 from springlab_grader.manifest import ManifestError, load_manifest  # noqa: E402
 from springlab_grader.reports import print_lab, write_outputs  # noqa: E402
+from springlab_grader.platforms import classroom_error, classroom_output_line, classroom_result  # noqa: E402
 from springlab_grader.results import LabResult  # noqa: E402
 from springlab_grader.sandbox import TIMEOUT, Sandbox  # noqa: E402
+from springlab_grader.student_check import forbidden_call_notes  # noqa: E402
 
 
 def main():
@@ -50,6 +53,10 @@ def main():
     ap.add_argument("--out", help="folder for report.md, results.json and junit.xml")
     ap.add_argument("--check-handout", help="check the handout's headings against the manifest and exit")
     ap.add_argument("--quiet", action="store_true", help="print only the summary")
+    ap.add_argument("--classroom", metavar="FILE",
+                    help="also append this lab's public result for GitHub Classroom's reporter to FILE "
+                         "($GITHUB_OUTPUT): result=<base64 JSON>; a program that is missing (the lab does not "
+                         "build) gives an error result worth the lab's public points")
     ap.add_argument("--seccomp", help="the program that writes the workers' seccomp filter (default: "
                                       "springlab_worker_seccomp beside the binary, if built)")
     args = ap.parse_args()
@@ -75,6 +82,10 @@ def main():
     seccomp = args.seccomp or str(pathlib.Path(binary).with_name("springlab_worker_seccomp"))
     if not os.access(binary, os.X_OK):
         print(f"{binary}: no such test program (was the lab built?)", file=sys.stderr)
+        if args.classroom:
+            with open(args.classroom, "a") as out:
+                out.write(classroom_output_line(classroom_error(
+                    manifest, "the lab does not build: see the build step's compiler errors")))
         return 2
     sandbox = Sandbox(timeout=args.timeout, memory_mb=args.memory_limit_mb)
     shown = binary
@@ -103,10 +114,21 @@ def main():
     print(f"{manifest['title']}: grading {shown} (SPRINGLAB_SEED={seed})")
     started = time.monotonic()
     results = grade_binary(binary, manifest, seed, sandbox, args.jobs, present, seccomp=seccomp)
-    lab = LabResult(manifest, results, seed=seed, seconds=time.monotonic() - started)
+    # The call check `grade` makes: a file that calls what exercise code may not scores as the
+    # skeleton's there, so here too, with the same sentence.
+    flagged = forbidden_call_notes(shown, pathlib.Path(args.manifest).resolve().parents[2], manifest["lab"])
+    lost = {ex_id: name for name, (_, ids) in flagged.items() for ex_id in ids}
+    for r in results:
+        if r.exercise["id"] in lost:
+            r.passed, r.message = False, REPLACED.format(name=lost[r.exercise["id"]])
+    lab = LabResult(manifest, results, [note for note, _ in flagged.values()], seed=seed,
+                    seconds=time.monotonic() - started)
     print_lab(lab, quiet=args.quiet)
     if args.out:
         write_outputs(args.out, [lab], manifest["title"], lab.seconds, seed)
+    if args.classroom:
+        with open(args.classroom, "a") as out:
+            out.write(classroom_output_line(classroom_result(lab)))
     percent = 100.0 * lab.score / lab.max_score if lab.max_score else 0.0
     if args.expect_percent is not None and abs(percent - args.expect_percent) > 1e-9:
         print(f"expected {args.expect_percent:g} %, got {percent:.1f} %", file=sys.stderr)

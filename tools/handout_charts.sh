@@ -26,7 +26,7 @@ chart 01_rope resolution scenes/rope.json --observable sag --tol 0.02
 CLOTH=(--set net.resolution=32 --set net.stretch_limit.enabled=false)
 chart 02_net stability scenes/net_hanging.json "${CLOTH[@]}" --no-map
 # From dt = 10 ms (about the 1/120 s step of the fabric): XPBD and projective dynamics are
-# stable there, every explicit method is not (handout 02, section 7.4).
+# stable there, every explicit method is not (handout 02, section 7.d).
 chart 02_net work-precision scenes/net_hanging.json "${CLOTH[@]}" --time 0.2 --levels 8 --largest-dt 0.01 --repeats 1
 chart 02_net resolution scenes/net_hanging.json --observable drape_height --tol 0.02 --time 1 --resolutions 8,16,32
 

@@ -40,6 +40,8 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
 import handout_check  # noqa: E402
 import make_skeleton  # noqa: E402
+from springlab_grader import labs  # noqa: E402
+from springlab_grader.errors import GradeError  # noqa: E402
 from springlab_grader.manifest import ManifestError, load_manifest  # noqa: E402
 
 # Written split so that this tool is not itself a leftover placeholder (tools/author_check.py).
@@ -51,13 +53,12 @@ class ScaffoldError(Exception):
 
 
 def find_lab(which):
-    labs = re.findall(r"^\s*springlab_add_lab\(\s*NAME\s+(\w+)\s+DIR\s+(\w+)\s*\)", (ROOT / "CMakeLists.txt").read_text(),
-                      re.M)
-    which = {"lab1": "rope", "lab2": "net", "lab3": "softbody"}.get(which, which)
-    for name, folder in labs:
-        if which in (name, folder):
-            return name, folder
-    raise ScaffoldError(f"no lab '{which}' in CMakeLists.txt; labs: {', '.join(n for n, _ in labs) or 'none'}")
+    """(id, folder) of the lab a user named (its id, or its folder), from the manifests."""
+    try:
+        lab = labs.find_lab(labs.discover_labs(ROOT), which)
+    except GradeError as error:
+        raise ScaffoldError(str(error)) from None
+    return lab.name, lab.dir
 
 
 def camel(name, upper):
@@ -303,7 +304,11 @@ def scaffold(which, name, title, points=2, signature=None):
 
     # The manifest: one more exercise, written in the file's own compact style.
     text = manifest_path.read_text()
-    entry = (f',\n    {{"id": "{ex_id}", "title": {json.dumps(title)}, "tests": [\n'
+    entry = (f',\n    {{"id": "{ex_id}", "title": {json.dumps(title)},\n'
+             f'     "file": "{name}.cpp", "section": "{TODO}: the handout\'s physics section (heading text)",\n'
+             f'     "caller": "{TODO}: framework/labs/{lab}/src/FILE.cpp:Class::function that calls {sig.func}",\n'
+             f'     "functions": [{json.dumps(" ".join(sig.text.split()))}],\n'
+             f'     "tests": [\n'
              f'      {{"name": "{suite}.MatchesItsDefinition", "points": {public_points}, "visibility": "visible"}},\n'
              f'      {{"name": "MatchesReference.{suite}", "points": {hidden_points}, "visibility": "hidden"}}\n'
              f'    ]}}')

@@ -34,11 +34,12 @@ INSTRUCTOR_ONLY = [
     "tools/seed_sweep.py",             # sweeps the reference's grading program over seeds
     # The grader's instructor side: building, cheat checks, submissions, the bundle. A student's
     # `check` needs only the manifest, sandbox, launch (judged_run: `check` starts each test as
-    # `grade` starts a worker), test runner, results and reports modules.
+    # `grade` starts a worker), test runner, results and reports modules, and the labs module
+    # (with its errors), which the `springlab` script reads the labs through (tools/lab_table.py).
     "tools/springlab_grader/build_cache.py", "tools/springlab_grader/integrity.py",
     "tools/springlab_grader/lab_grader.py", "tools/springlab_grader/submission.py",
-    "tools/springlab_grader/gradescope.py", "tools/springlab_grader/labs.py",
-    "tools/springlab_grader/errors.py",
+    "tools/springlab_grader/gradescope.py", "tools/springlab_grader/sealed_compile.py",
+    "tools/springlab_grader/README.md",  # how the instructor's grader works, for instructors
     # The judge and worker of graded tests (the call trace between them) and their generator.
     "tools/make_call_layer.py", "tests/support/call_trace*", "tests/support/judge_main.cpp",
     "tests/support/worker_main.cpp",
@@ -51,6 +52,7 @@ INSTRUCTOR_ONLY = [
 ]
 # The release's README.md: what a student reads first (labs, commands, points, Eigen, help).
 STUDENT_README = ROOT / "tools" / "templates" / "README.student.md"
+CLASSROOM_WORKFLOW = ROOT / "tools" / "templates" / "classroom.yml"
 NEVER_DIRS = ["build*", "out", ".git", "__pycache__", ".cache", ".vscode", ".idea"]
 NEVER_FILES = ["*.pyc"]
 
@@ -106,6 +108,10 @@ def release(out, force=False):
     if not STUDENT_README.is_file():
         raise ReleaseError(f"{STUDENT_README.relative_to(ROOT)}: the student README is missing")
     shutil.copy2(STUDENT_README, out / "README.md")
+    written += 1
+    # GitHub Classroom's autograding of the public tests (tests/grading/check_platforms.py).
+    (out / ".github" / "workflows").mkdir(parents=True, exist_ok=True)
+    shutil.copy2(CLASSROOM_WORKFLOW, out / ".github" / "workflows" / "classroom.yml")
     written += 1
     # labs/: generated now from solutions/, so the release can never hold a stale skeleton.
     labs = sorted(p.name for p in (ROOT / "solutions").iterdir() if p.is_dir())

@@ -4,7 +4,7 @@ on the reference for every seed, or a student's score would depend on the seed.
 
     tools/seed_sweep.py LAB [--seeds N] [--first S] [--jobs J] [--build DIR] [--binary PATH]
 
-LAB is rope, net or softbody (the program is DIR/tests/LAB_grading_reference). One run with
+LAB is a lab's id, rope, net or softbody (the program is DIR/tests/LAB_grading_reference). One run with
 seed FIRST finds the tests that draw random inputs (tests/support/seeded.hpp records
 `random_draws` per test); only those then run, once per seed FIRST .. FIRST+N-1, all of them
 in one process per seed (each test reseeds itself in SetUp, as when the grader runs it alone),
@@ -22,6 +22,8 @@ import tempfile
 import time
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tools"))
+from springlab_grader.labs import discover_labs  # noqa: E402
 
 
 def run(binary, seed, filt, workdir, timeout):
@@ -57,7 +59,7 @@ def run(binary, seed, filt, workdir, timeout):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("lab", choices=["rope", "net", "softbody"])
+    ap.add_argument("lab", choices=[lab.name for lab in discover_labs(ROOT)])
     ap.add_argument("--seeds", type=int, default=1000, help="how many consecutive seeds (default 1000)")
     ap.add_argument("--first", type=int, default=1, help="the first seed (default 1)")
     ap.add_argument("--jobs", type=int, default=2, help="processes at once (default 2)")

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <system_error>
 
+#include <springlab/energy_source.hpp>
 #include <springlab/recorder.hpp>
 #include <springlab/registry.hpp>
 
@@ -94,8 +95,16 @@ int runSim(const Registry& registry, const SimOptions& o) {
             << " steps of dt = " << dt << " s (t = " << sim.state.time << " s), " << sim.stats.forceEvaluations
             << " force evaluations, " << sim.stats.solverIterations << " solver iterations, "
             << seconds << " s wall, " << (seconds > 0 ? static_cast<double>(o.steps) / seconds : 0.0)
-            << " steps/s; total energy " << e.total() << " J; wrote " << o.out << "\n";
+            << " steps/s; total energy " << e.total() << " J (kinetic " << e.kinetic << " J);";
+  // The scene's observables at the end (the numbers the handouts quote: drape_height, sag, ...).
+  for (const Observable& ob : sim.observables()) {
+    std::cout << " " << ob.name << " = " << ob.value << (ob.unit.empty() ? "" : " ") << ob.unit << ";";
+  }
+  std::cout << " wrote " << o.out << "\n";
   if (o.profile) printProfile(sim, o.steps);
+  // A run that did not blow up can still be wrong: a force that feeds energy in (a wind with
+  // its sign turned) is named.
+  if (const auto warning = energySourceWarning(sim)) std::cerr << "springlab sim: warning: " << *warning << "\n";
   return 0;
 }
 

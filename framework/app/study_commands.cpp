@@ -1,5 +1,6 @@
 #include "study_commands.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <cmath>
@@ -190,7 +191,7 @@ std::pair<CLI::App*, CLI::App*> addStudyCommands(CLI::App& app, StudyCommandOpti
   advise->add_option("--tol", o.tolerance, "relative tolerance on the observable (default 0.01)");
   advise->add_option("--observable", o.observable, "the scene observable to keep accurate (default: its first)");
   advise->add_option("--integrators", o.integrators, "integrators to consider (default: all registered)")->delimiter(',');
-  advise->add_option("--resolutions", o.resolutions, "values of the resolution key to try")->delimiter(',');
+  advise->add_option("--resolutions", o.resolutions, "values of the resolution key to try (default: the scene's over 8, 4, 2 and 1)")->delimiter(',');
   return {chart, advise};
 }
 
@@ -212,22 +213,35 @@ int runAdvise(const Registry& registry, const StudyCommandOptions& o) {
   const studies::Advice advice = studies::advise(registry, doc, ao);
 
   // The reasoning on stderr, the snippet alone on stdout (so it can be redirected to a file).
+  // The tolerance is split: half for the resolution, half for the time step.
   const std::string lab = doc.json.at("lab").get<std::string>();
+  const double half = 0.5 * o.tolerance;
+  std::cerr << "--tol " << o.tolerance << ": the answer keeps the observable within " << o.tolerance
+            << " (relative) of a finer model and step, " << half << " for the resolution and " << half
+            << " for the time step\n";
   if (!advice.resolution.rows.empty()) {
     std::cerr << "resolution: " << lab << "." << registry.resolutionRule(lab).key << " = " << advice.chosenResolution
-              << " keeps " << advice.resolution.observable << " within " << 0.5 * o.tolerance << " of "
-              << advice.resolution.rows.back().resolution
+              << " keeps " << advice.resolution.observable << " within " << half << " of "
+              << registry.resolutionRule(lab).key << " = " << advice.resolution.rows.back().resolution
               << (advice.resolution.chosen + 1 == static_cast<int>(advice.resolution.rows.size())
-                      ? " (the finest tried: no coarser one fits; pass finer --resolutions to look further)"
+                      ? " (the scene's own, the finest tried: no coarser one fits; --resolutions tries others)"
                       : "")
               << "\n";
   }
-  std::cerr << "integrators at that resolution (largest dt within " << 0.5 * o.tolerance << "):\n";
+  // One column per field, as wide as its longest entry (integrator names run to 21 letters).
+  size_t nameWidth = 10;
+  for (const studies::Candidate& c : advice.candidates) nameWidth = std::max(nameWidth, c.integrator.size() + 2);
+  std::cerr << "integrators at that resolution (the largest dt within " << half << " of RK4 at dt = "
+            << advice.referenceDt << " s, over " << ao.duration << " s):\n";
   for (const studies::Candidate& c : advice.candidates) {
-    std::cerr << "  " << std::left << std::setw(18) << c.integrator;
+    std::cerr << "  " << std::left << std::setw(static_cast<int>(nameWidth)) << c.integrator;
     if (c.dt > 0.0) {
-      std::cerr << "dt = " << std::setw(12) << c.dt << " error " << std::setw(12) << c.error << c.evaluationsPerSecond
-                << " force evaluations per simulated second\n";
+      std::cerr << "dt = " << std::setw(12) << c.dt << " error " << std::setw(12) << c.error << std::setw(10)
+                << c.evaluationsPerSecond << " force evaluations (and solver iterations) per simulated second"
+                << (&c == &advice.candidates[static_cast<size_t>(std::max(advice.best, 0))] && advice.best >= 0
+                        ? "   <- the cheapest"
+                        : "")
+                << "\n";
     } else {
       std::cerr << c.note << "\n";
     }

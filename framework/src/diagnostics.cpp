@@ -13,7 +13,7 @@ double springGershgorinBound(const Simulation& sim) {
   // Row sums of M^-1 K for the springs (Gershgorin): each spring adds k to both ends' rows
   // twice (diagonal and off-diagonal), so a free mass with springs k_j has |row| = 2 sum k_j.
   std::vector<double> rowSum(sim.masses.size(), 0.0);
-  for (const Spring& s : sim.springs) {
+  for (const Spring& s : sim.springs()) {
     rowSum[s.mass1] += 2.0 * s.springConstant;
     rowSum[s.mass2] += 2.0 * s.springConstant;
   }
@@ -43,14 +43,18 @@ void BlowUpCheck::arm(const Simulation& sim) {
     }
     extent = (hi - lo).norm();
   }
-  for (const Spring& s : sim.springs) extent += s.springLength;
+  for (const Spring& s : sim.springs()) extent += s.springLength;
   for (const Mass& m : sim.masses) totalMass += m.m;
   energyScale_ = std::abs(e.kinetic) + std::abs(e.elastic) + std::abs(e.other) +
                  totalMass * (sim.gravitation.norm() * extent + 1.0);
   passiveCeiling_ = e.total();
-  passiveExcess_ = 0;
   last_ = sim.state;
   lastStep_ = sim.stats.steps;
+}
+
+double BlowUpCheck::passivityAllowance() const {
+  if (energySwing_ < 0.0) return kPassivityFraction * energyScale_;
+  return std::max(kSwingMargin * energySwing_, kSwingFloor * energyScale_);
 }
 
 void BlowUpCheck::admitUserEnergy(const Simulation& sim) {
@@ -113,15 +117,15 @@ std::string BlowUpCheck::blameForces(Simulation& sim) {
   sim.muteForceTerm(-1);
 
   // Which term: take the springs away (k = 0 would not do: 0 times a 0/0 direction is still
-  // NaN), then gravity too, and see whether mass `bad` turns finite. Labs read the spring list
-  // at every evaluation (a cache keyed on its size is rebuilt), and both come back below.
+  // NaN), then gravity too, and see whether mass `bad` turns finite. Both come back below
+  // (swapSprings lets the lab derive again what it keeps from the springs).
   std::vector<Spring> springs;
-  springs.swap(sim.springs);
+  sim.swapSprings(springs);
   const Vec3 gravity = sim.gravitation;
   const bool withoutSprings = forcesAtLast() && finite(f[static_cast<std::size_t>(bad)]);
   sim.gravitation = Vec3::Zero();
   const bool withoutGravity = !withoutSprings && forcesAtLast() && finite(f[static_cast<std::size_t>(bad)]);
-  sim.springs.swap(springs);
+  sim.swapSprings(springs);
   sim.gravitation = gravity;
   sim.stats = stats;
 
@@ -136,8 +140,8 @@ std::string BlowUpCheck::blameForces(Simulation& sim) {
   }
   if (withoutSprings) {
     // What the framework can see: a spring at that mass with coincident ends or bad parameters.
-    for (std::size_t j = 0; j < sim.springs.size(); ++j) {
-      const Spring& s = sim.springs[j];
+    for (std::size_t j = 0; j < sim.springs().size(); ++j) {
+      const Spring& s = sim.springs()[j];
       if (s.mass1 != bad && s.mass2 != bad) continue;
       const double length = (last_.pos[static_cast<std::size_t>(s.mass1)] - last_.pos[static_cast<std::size_t>(s.mass2)]).norm();
       if (length == 0.0) {
@@ -200,6 +204,16 @@ double exactLimit(Simulation& sim) {
 
 }  // namespace
 
+bool BlowUpCheck::beyondLimitOrMeasured(Simulation& sim, double dt) {
+  if (energySwing_ >= 0.0) return true;
+  if (dt != limitDt_) {
+    limitDt_ = dt;
+    const double limit = exactLimit(sim);
+    beyondLimit_ = !(dt <= limit);  // NaN (not computable) counts as beyond
+  }
+  return beyondLimit_;
+}
+
 void BlowUpCheck::check(Simulation& sim, double dt) {
   // Detector 1, a non-finite state: name the first mass that went bad.
   std::string why;
@@ -231,19 +245,18 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     } else if (sim.suppliesEnergy() || anchorsMoved(sim, last_)) {
       // Energy comes in (wind, pump, a moving anchor): the ceiling follows it up.
       passiveCeiling_ = std::max(passiveCeiling_, e.total());
-    } else if (e.total() <= passiveCeiling_ + kPassivityFraction * energyScale_) {
-      passiveExcess_ = 0;
-    } else if (++passiveExcess_ >= kPassivitySteps) {
-      // Detector 3, passivity: nothing puts energy in, yet the total energy stayed above the
-      // ceiling for kPassivitySteps checks in a row (a symplectic method's energy swings above
-      // it and back within a few steps near its limit; a saturated instability stays there).
+    } else if (e.total() > passiveCeiling_ + passivityAllowance() && beyondLimitOrMeasured(sim, dt)) {
+      // Detector 3, passivity: nothing puts energy in, yet the total energy rose above the
+      // ceiling by more than the integrator's own oscillation.
       std::ostringstream os;
-      os << "passivity: for " << kPassivitySteps << " steps the total energy stayed above what the scene put in, now "
-         << e.total() << " J, " << e.total() - passiveCeiling_
+      os << "passivity: the total energy rose to " << e.total() << " J, " << e.total() - passiveCeiling_
          << " J above the most the scene held while energy came in (" << passiveCeiling_
          << " J), in a scene that puts no energy in (no wind, pump, moving anchor or drag); the integrator's own "
             "energy oscillation is allowed "
-         << kPassivityFraction * energyScale_ << " J (" << kPassivityFraction << " of the energy scale)";
+         << passivityAllowance() << " J ("
+         << (energySwing_ >= 0.0 ? "64 times its swing at half the stability limit"
+                                 : "half the energy scale, no swing was measured, and dt is past the step's limit")
+         << ")";
       why = os.str();
     }
   }
@@ -287,7 +300,7 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   if (std::isnan(limit)) {
     msg << "The stability limit of " << name << " on this scene could not be computed; try a smaller dt.";
   } else if (std::isinf(limit)) {
-    msg << "Likely cause: not dt: " << name << " is stable at every dt on this scene linearised at its start. Look "
+    msg << "Likely cause: not dt: " << name << " is stable at every dt on this scene linearised where it settles. Look "
         << "for a force that grows without bound, a contact or a constraint that adds energy.";
   } else if (limit == 0.0) {
     msg << "Likely cause: " << name << " has no stable dt on this scene (the linearised step grows at every dt: "
@@ -297,8 +310,8 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
         << " on this scene (dampers, air, contacts and pressure included) is stable only below dt = " << limit
         << " s.";
   } else {
-    msg << "dt = " << dt << " s is below the stability limit of " << name << " on this scene linearised at its start ("
-        << limit << " s), so the step is not the likely cause: the scene left the state it was linearised at (a "
+    msg << "dt = " << dt << " s is below the stability limit of " << name << " on this scene linearised where it settles ("
+        << limit << " s), so the step is not the likely cause: the scene left the state it was linearised at, where it settles (a "
         << "contact, a stiffer configuration, a force that grows without bound).";
   }
   throw BlowUp(msg.str());

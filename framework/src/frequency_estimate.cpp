@@ -19,8 +19,8 @@ struct Dof {
 // Typical length of the scene, to size the finite-difference step.
 double lengthScale(const Simulation& sim) {
   double sum = 0.0;
-  for (const Spring& s : sim.springs) sum += s.springLength;
-  if (!sim.springs.empty() && sum > 0.0) return sum / static_cast<double>(sim.springs.size());
+  for (const Spring& s : sim.springs()) sum += s.springLength;
+  if (!sim.springs().empty() && sum > 0.0) return sum / static_cast<double>(sim.springs().size());
   return 1.0;
 }
 

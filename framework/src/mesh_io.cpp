@@ -14,8 +14,48 @@
 
 namespace springlab {
 
+namespace {
+
+// tinyobjloader drops a polygon with an index out of range without a word (the surface check
+// then names a neighbouring face): every "f" line's vertex indices are checked here first,
+// naming the file, the line, the face and the index. Positive indices count from 1 over the
+// file's vertices, negative ones back from the last vertex read.
+void checkObjFaceIndices(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw MeshError(path + ": cannot open the mesh file");
+  long total = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("v ", 0) == 0 || line.rfind("v\t", 0) == 0) ++total;
+  }
+  in.clear();
+  in.seekg(0);
+  long lineNumber = 0, seen = 0, face = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++lineNumber;
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "v") ++seen;
+    if (word != "f") continue;
+    ++face;
+    for (std::string corner; words >> corner;) {
+      const long index = std::strtol(corner.c_str(), nullptr, 10);
+      const bool valid = index > 0 ? index <= total : index < 0 && -index <= seen;
+      if (!valid) {
+        while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
+        throw MeshError(path + ":" + std::to_string(lineNumber) + ": face " + std::to_string(face) + " (" + line +
+                        "): vertex index " + corner.substr(0, corner.find('/')) + " is out of range (the file has " +
+                        std::to_string(total) + " vertices, numbered from 1)");
+      }
+    }
+  }
+}
+
+}  // namespace
+
 SurfaceMesh loadObj(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw MeshError(path + ": cannot open the mesh file");
+  checkObjFaceIndices(path);
   // tinyobjloader splits polygons into triangles; materials are not needed.
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;

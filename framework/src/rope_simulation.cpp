@@ -80,13 +80,13 @@ std::vector<Parameter> RopeSimulation::declareParameters() {
       Parameter{"spring constant", "N/m", [this] { return springConstant; },
                 [this](double v) {
                   springConstant = v;
-                  for (Spring& s : springs) s.springConstant = v;
+                  for (Spring& s : editSprings()) s.springConstant = v;
                 },
                 1.0, 1.0e6, true},
       Parameter{"spring friction", "N s/m", [this] { return springFrictionConstant; },
                 [this](double v) {
                   springFrictionConstant = v;
-                  for (Spring& s : springs) s.frictionConstant = v;
+                  for (Spring& s : editSprings()) s.frictionConstant = v;
                 },
                 0.0, 10.0, false},
       Parameter::field("air friction", "N s/m", airFrictionConstant, 0.0, 1.0, false),
@@ -130,7 +130,7 @@ double RopeSimulation::otherPotentialEnergy(const State& s) const {
 
 Bounds RopeSimulation::reach() const {
   double length = 0.0;
-  for (const Spring& s : springs) length += s.springLength;
+  for (const Spring& s : springs()) length += s.springLength;
   const double L = std::max(length, 0.1);
   const Vec3& c = ropeConnectionPos;
   // The masses where they start, and where the rope swings: a rope that hangs free (the

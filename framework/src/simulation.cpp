@@ -45,8 +45,8 @@ void Simulation::simulate(double dt) {
 }
 
 void Simulation::operate(double dt) {
-  // The integrator performs init() and solve() itself, as often as its method needs
-  // (once for Euler, four times for RK4), so operate is one simulate().
+  // The integrator evaluates the forces itself, as often as its method needs (once for
+  // symplectic Euler, four times for RK4), so the handout's init() and solve() are in there.
   simulate(dt);
 }
 
@@ -82,7 +82,20 @@ void Simulation::markInitialState() {
   }
   initialState_ = state;
   force.assign(masses.size(), Vec3::Zero());
+  building_ = false;
+  onModelEdited();
   blowUpCheck_.arm(*this);
+}
+
+std::unique_ptr<Integrator> Simulation::exchangeIntegrator(std::unique_ptr<Integrator> integrator) {
+  std::unique_ptr<Integrator> before = std::move(integrator_);
+  try {
+    setIntegrator(std::move(integrator));
+  } catch (...) {
+    integrator_ = std::move(before);
+    throw;
+  }
+  return before;
 }
 
 void Simulation::reset() {
@@ -101,7 +114,7 @@ Energies Simulation::energies() const {
     e.kinetic += 0.5 * masses[i].m * state.vel[i].squaredNorm();
     e.gravitational -= masses[i].m * gravitation.dot(state.pos[i]);
   }
-  for (const Spring& s : springs) {
+  for (const Spring& s : springs_) {
     const double stretch = (state.pos[s.mass1] - state.pos[s.mass2]).norm() - s.springLength;
     e.elastic += 0.5 * s.springConstant * stretch * stretch;
   }
@@ -140,7 +153,16 @@ void Simulation::release() {
 }
 
 void Simulation::editModel(const std::function<void(Simulation&)>& edit) {
-  edit(*this);
+  // editSprings() is allowed during the edit (and stays allowed in an edit inside one).
+  const bool wasBuilding = building_;
+  building_ = true;
+  try {
+    edit(*this);
+  } catch (...) {
+    building_ = wasBuilding;
+    throw;
+  }
+  building_ = wasBuilding;
   if (state.pos.size() != masses.size() || state.vel.size() != masses.size()) {
     throw std::logic_error("Simulation::editModel: the edit changed the number of masses but not the state");
   }
@@ -149,6 +171,20 @@ void Simulation::editModel(const std::function<void(Simulation&)>& edit) {
   // the edited model may hold more energy than the old one: neither is a blow-up.
   integrator_->reset();
   blowUpCheck_.admitUserEnergy(*this);
+}
+
+std::vector<Spring>& Simulation::editSprings() {
+  if (!building_) {
+    throw std::logic_error(
+        "Simulation::editSprings: the springs change only inside editModel, so the lab derives again what it "
+        "keeps from them: sim.editModel([&](Simulation& model) { model.editSprings()... })");
+  }
+  return springs_;
+}
+
+void Simulation::swapSprings(std::vector<Spring>& other) {
+  springs_.swap(other);
+  onModelEdited();
 }
 
 void Simulation::togglePinned(int index) {

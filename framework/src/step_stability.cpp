@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <random>
 
 #include <Eigen/Eigenvalues>
 
 #include "springlab/frequency_estimate.hpp"
+#include "springlab/symplectic_euler.hpp"
 
 namespace springlab {
 
@@ -32,8 +35,8 @@ std::vector<Dof> freeCoordinates(const Simulation& sim) {
 // Typical length of the scene: the springs' mean rest length, else the extent of the masses.
 double typicalLength(const Simulation& sim) {
   double sum = 0.0;
-  for (const Spring& s : sim.springs) sum += s.springLength;
-  if (!sim.springs.empty() && sum > 0.0) return sum / static_cast<double>(sim.springs.size());
+  for (const Spring& s : sim.springs()) sum += s.springLength;
+  if (!sim.springs().empty() && sum > 0.0) return sum / static_cast<double>(sim.springs().size());
   const Bounds b = sim.Simulation::reach();
   const double extent = (b.hi - b.lo).norm();
   return extent > 0.0 ? extent : 1.0;
@@ -49,19 +52,54 @@ Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed,
 // the simulation is left reset.
 class LinearisedRuns {
  public:
-  LinearisedRuns(Simulation& sim, const StepStabilityOptions& o) : sim_(sim), dofs_(freeCoordinates(sim)) {
+  LinearisedRuns(Simulation& sim, const StepStabilityOptions& o)
+      : sim_(sim), dofs_(freeCoordinates(sim)), solverTolerance_(sim.solver.tolerance) {
+    // An implicit step's linear solve stops at a residual relative to the whole right-hand
+    // side: an error of that size, not proportional to the perturbation, would swamp the
+    // finite differences. The linearised step is the step with its system solved exactly (a
+    // solver error that does not grow is not an instability), so the runs here solve tightly.
+    sim_.solver.tolerance = std::min(sim_.solver.tolerance, 1e-12);
     sim_.reset();
     length_ = typicalLength(sim_);
-    double w = 0.0;
-    try {
-      w = lanczosEstimate(sim_, sim_.initialState()).maxAngularFrequency;
-    } catch (const std::exception&) {
-      w = 0.0;
+    frequency_ = stiffestFrequency(sim_.initialState());
+    // Where to linearise: the state the scene settles to, not the state it starts in. A
+    // damped scene spends all but its first moments near its rest state, and a run blows up
+    // there or not at all: a start far from rest (the mass on its spring released stretched,
+    // the rope released straight) stiffens or softens the springs for a few steps only, and
+    // growth over a few steps is a transient, not an instability (the mass on its spring:
+    // RK4's limit at its start is 0.077 s, the runs' and the closed form's at rest 0.283 s).
+    // Scenes that never settle (wind, a moving anchor) are linearised where the settling
+    // budget leaves them, a state of their ordinary motion.
+    if (o.settle) base_ = settledState(o);
+    if (!base_.pos.empty()) frequency_ = std::max(frequency_, stiffestFrequency(base_));
+    // Finite-difference steps relative to the state's own scale: a perturbation below the
+    // round-off of the coordinates (a scene far from the origin, a large velocity) would
+    // measure round-off, so it is at least sqrt(machine epsilon) times the largest of them.
+    double position = 0.0, velocity = 0.0;
+    const State& at = base_.pos.empty() ? sim_.initialState() : base_;
+    for (const Dof& d : dofs_) {
+      position = std::max(position, std::abs(at.pos[d.mass][d.axis]));
+      velocity = std::max(velocity, std::abs(at.vel[d.mass][d.axis]));
     }
-    if (!(w > 0.0) || !std::isfinite(w)) w = sim_.angularFrequencyBound();
-    frequency_ = w > 0.0 && std::isfinite(w) ? w : 1.0;
     epsilon_ = o.relativePerturbation;
+    const double roundOff = std::sqrt(std::numeric_limits<double>::epsilon());
+    positionStep_ = std::max(epsilon_ * length_, roundOff * position);
+    velocityStep_ = std::max(epsilon_ * length_ * frequency_, roundOff * velocity);
+    restore();
   }
+
+  // The state the runs start from (the settled state), with the integrator's history forgotten.
+  void restore() {
+    sim_.reset();
+    if (base_.pos.empty()) return;
+    sim_.state.pos = base_.pos;
+    sim_.state.vel = base_.vel;
+    sim_.state.time = base_.time;
+  }
+
+  ~LinearisedRuns() { sim_.solver.tolerance = solverTolerance_; }
+  LinearisedRuns(const LinearisedRuns&) = delete;
+  LinearisedRuns& operator=(const LinearisedRuns&) = delete;
 
   int size() const { return 2 * static_cast<int>(dofs_.size()); }
   double maxAngularFrequency() const { return frequency_; }
@@ -71,13 +109,13 @@ class LinearisedRuns {
   // initial state plus epsilon times `direction` (dimensionless, largest entry 1; empty: none).
   // Stops early (fewer columns) when the state turns non-finite.
   Eigen::MatrixXd run(double dt, int count, const Eigen::VectorXd& direction) {
-    sim_.reset();
+    restore();
     State& s = sim_.state;
     const int n = static_cast<int>(dofs_.size());
     if (direction.size() == size()) {
       for (int j = 0; j < n; ++j) {
-        s.pos[dofs_[j].mass][dofs_[j].axis] += epsilon_ * length_ * direction[j];
-        s.vel[dofs_[j].mass][dofs_[j].axis] += epsilon_ * length_ * frequency_ * direction[n + j];
+        s.pos[dofs_[j].mass][dofs_[j].axis] += positionStep_ * direction[j];
+        s.vel[dofs_[j].mass][dofs_[j].axis] += velocityStep_ * direction[n + j];
       }
     }
     return runFromCurrent(dt, count);
@@ -115,19 +153,102 @@ class LinearisedRuns {
     return out.leftCols(columns);
   }
 
-  double epsilon() const { return epsilon_; }
+  // The perturbations in the recorded (dimensionless) coordinates: positions over the typical
+  // length, velocities over that length times w_max.
+  Eigen::VectorXd perturbationScale() const {
+    const Eigen::Index n = static_cast<Eigen::Index>(dofs_.size());
+    Eigen::VectorXd scale(2 * n);
+    scale.head(n).setConstant(positionStep_ / length_);
+    scale.tail(n).setConstant(velocityStep_ / (length_ * frequency_));
+    return scale;
+  }
 
-  // Whether the integrator keeps no history between steps: two steps from the initial state
-  // land where one step, a reset and a step from its result land. Then the map is probed one
-  // step from the initial state itself (the Jacobian there, even when the scene moves);
-  // otherwise by the second step of two (d_2 = J d_1 after the history has formed).
+  // The largest angular frequency at a state: Lanczos on the forces' Jacobian there, else the
+  // lab's bound; 1 rad/s when neither finds one.
+  double stiffestFrequency(const State& at) {
+    const Stats stats = sim_.stats;
+    double w = 0.0;
+    try {
+      w = lanczosEstimate(sim_, at).maxAngularFrequency;
+    } catch (const std::exception&) {
+      w = 0.0;
+    }
+    sim_.stats = stats;
+    if (!(w > 0.0) || !std::isfinite(w)) w = sim_.angularFrequencyBound();
+    return w > 0.0 && std::isfinite(w) ? w : 1.0;
+  }
+
+  // Dynamic relaxation with kinetic damping: symplectic Euler (the framework's own, with the
+  // lab's after-step corrections) at a quarter of its undamped limit, every velocity set to
+  // zero whenever the kinetic energy passes a peak, until the masses stop moving or the
+  // budget of force evaluations runs out (the 64 x 64 cloth gets about a hundred steps: its
+  // springs' local tension, which sets the stiffest modes, forms within those). The step
+  // halves and the settling starts again if the energy grows (damping or contacts stiffer
+  // than w_max says); the start state is kept if it never settles stably.
+  State settledState(const StepStabilityOptions& o) {
+    const Stats stats = sim_.stats;
+    const bool checked = sim_.blowUpCheckEnabled();
+    sim_.setBlowUpCheck(false);
+    std::unique_ptr<Integrator> own = sim_.exchangeIntegrator(std::make_unique<SymplecticEuler>());
+    const long budget = std::clamp<long>(o.settleEvaluations / std::max<long>(1, static_cast<long>(dofs_.size())),
+                                         100, o.settleSteps);
+    State settled;
+    for (double dt = 0.5 / frequency_, tries = 0; tries < 4 && settled.pos.empty(); dt *= 0.5, ++tries) {
+      sim_.reset();
+      const double start = sim_.energies().total();
+      const double scale = sim_.blowUpEnergyScale();
+      double kinetic = 0.0;
+      bool grew = false;
+      for (long k = 0; k < budget; ++k) {
+        try {
+          sim_.simulate(dt);
+        } catch (const std::exception&) {
+          grew = true;
+          break;
+        }
+        const Energies e = sim_.energies();
+        if (!std::isfinite(e.total()) || e.total() > start + scale) {
+          grew = true;
+          break;
+        }
+        if (e.kinetic < kinetic) {
+          for (Vec3& v : sim_.state.vel) v.setZero();
+          sim_.integrator().reset();
+          kinetic = 0.0;
+        } else {
+          kinetic = e.kinetic;
+        }
+        // At rest: no mass moves a billionth of the typical length in a step.
+        double fastest = 0.0;
+        for (const Dof& d : dofs_) fastest = std::max(fastest, std::abs(sim_.state.vel[d.mass][d.axis]));
+        if (k > 10 && fastest * dt < 1e-9 * length_ && kinetic == 0.0) break;
+      }
+      if (!grew) settled = sim_.state;
+    }
+    sim_.exchangeIntegrator(std::move(own));
+    sim_.setBlowUpCheck(checked);
+    sim_.reset();
+    sim_.stats = stats;
+    if (!settled.pos.empty()) {
+      // The settled state at rest: only the free masses' motion is relaxed away.
+      for (Vec3& v : settled.vel) v.setZero();
+    }
+    return settled;
+  }
+
+  // Whether the integrator keeps no history between steps: two steps from the state land
+  // where one step, a reset and a step from its result land. Then the map is probed one step
+  // from the state itself (the Jacobian there, even when the scene moves); otherwise by the
+  // second step of two (d_2 = J d_1 after the history has formed). The state is perturbed
+  // first: at rest in equilibrium nothing moves, and every method would look history-free.
   bool historyFree(double dt) {
     if (historyFree_) return *historyFree_;
-    const Eigen::MatrixXd twoSteps = run(dt, 1, {});
-    const Eigen::MatrixXd oneStep = run(dt, 0, {});
+    const Eigen::VectorXd nudge = randomDirection(size(), 2026);
+    const Eigen::MatrixXd twoSteps = run(dt, 1, nudge);
+    const Eigen::MatrixXd oneStep = run(dt, 0, nudge);
     bool same = twoSteps.cols() == 2 && oneStep.cols() == 1;
     if (same) {
-      sim_.reset();
+      restore();
       State& s = sim_.state;
       const int n = static_cast<int>(dofs_.size());
       for (int j = 0; j < n; ++j) {
@@ -156,7 +277,7 @@ class LinearisedRuns {
   // damping these are invariant under the step, and the Ritz values on them are the modes'
   // exact eigenvalues; otherwise they are the modes most likely to fail first.
   Eigen::MatrixXd modalDirections(int count) {
-    sim_.reset();
+    restore();
     const int n = static_cast<int>(dofs_.size());
     const State at = sim_.state;
     const Stats stats = sim_.stats;
@@ -171,7 +292,7 @@ class LinearisedRuns {
         Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
         const double largest = d.cwiseAbs().maxCoeff();
         if (largest == 0.0) return out;
-        const double h = epsilon_ * length_ * (velocities ? frequency_ : 1.0) / largest;
+        const double h = (velocities ? velocityStep_ : positionStep_) / largest;
         State up = at, down = at;
         for (int j = 0; j < n; ++j) {
           Vec3& a = velocities ? up.vel[dofs_[j].mass] : up.pos[dofs_[j].mass];
@@ -220,6 +341,10 @@ class LinearisedRuns {
   double length_ = 1.0;     // m
   double frequency_ = 1.0;  // rad/s
   double epsilon_ = 1e-6;
+  double positionStep_ = 1e-6;  // m, the finite differences' perturbation of a position
+  double velocityStep_ = 1e-6;  // m/s, of a velocity
+  double solverTolerance_;  // the scene's own, put back when the runs end
+  State base_;              // where the map is linearised: the settled state (empty: the initial one)
   int steps_ = 0;
   Eigen::MatrixXd directions_;  // [size x ...] modalDirections
   std::optional<bool> historyFree_;
@@ -298,6 +423,7 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   const Eigen::MatrixXd U = n <= o.denseBelow ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n)) : runs.directions(o.modes);
   const bool oneStep = runs.historyFree(dt);
   const Eigen::MatrixXd base = runs.run(dt, oneStep ? 0 : 1, {});
+  const Eigen::VectorXd scale = runs.perturbationScale();
   Eigen::MatrixXd X(n, U.cols()), Y(n, U.cols());
   for (Eigen::Index j = 0; j < U.cols(); ++j) {
     const Eigen::VectorXd u = U.col(j) / U.col(j).cwiseAbs().maxCoeff();
@@ -307,8 +433,8 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
       out.steps = runs.steps() - before;
       return out;
     }
-    X.col(j) = oneStep ? u : Eigen::VectorXd((moved.col(0) - base.col(0)) / runs.epsilon());
-    Y.col(j) = (moved.col(oneStep ? 0 : 1) - base.col(oneStep ? 0 : 1)) / runs.epsilon();
+    X.col(j) = oneStep ? Eigen::VectorXd(u.cwiseProduct(scale)) : Eigen::VectorXd(moved.col(0) - base.col(0));
+    Y.col(j) = moved.col(oneStep ? 0 : 1) - base.col(oneStep ? 0 : 1);
   }
   out.radius = ritzRadius(X, Y);
   out.steps = runs.steps() - before;

@@ -1,4 +1,4 @@
-#include "springlab/studies/parallel.hpp"
+#include "parallel.hpp"
 
 #include <algorithm>
 #include <atomic>

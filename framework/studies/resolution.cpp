@@ -4,11 +4,12 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
-#include "springlab/studies/parallel.hpp"
+#include "parallel.hpp"
 
 namespace springlab::studies {
 
@@ -37,6 +38,12 @@ long stepsPerSample(double interval, double dt) {
 // The scene's own dt, integrator and frame length (dt x substeps).
 double sceneDt(const SceneDocument& scene) { return scene.json.at("dt").get<double>(); }
 
+// A run's work for the progress lines: its steps times its masses.
+double runWork(const Registry& registry, const RunSpec& spec) {
+  const double masses = registry.loadScene(spec.scene).sim->numOfMasses();
+  return masses * static_cast<double>(spec.stepsPerSample) * spec.samples;
+}
+
 }  // namespace
 
 double relativeError(const std::vector<double>& a, const std::vector<double>& b) {
@@ -58,11 +65,14 @@ ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& s
   std::tie(study.observable, study.unit) = pickObservable(registry, scene, o.observable);
   study.integrator = o.integrator.empty() ? scene.json.at("integrator").get<std::string>() : o.integrator;
 
-  // Resolutions: given, or the scene's own over 2^-3 .. 2^1.
+  // Resolutions: given, or the scene's own over 2^-3 .. 2^o.finerSteps (advise stops at the
+  // scene's own: the author's model is the fine one it simplifies).
   std::set<int> values(o.resolutions.begin(), o.resolutions.end());
   if (values.empty()) {
     const int base = registry.resolution(scene);
-    for (int k = -3; k <= 1; ++k) values.insert(std::max(2, static_cast<int>(std::lround(base * std::ldexp(1.0, k)))));
+    for (int k = -3; k <= o.finerSteps; ++k) {
+      values.insert(std::max(2, static_cast<int>(std::lround(base * std::ldexp(1.0, k)))));
+    }
   }
 
   // Each resolution keeps the scene's w_max dt (its author's safety margin), rounded down to
@@ -70,6 +80,7 @@ ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& s
   const double interval = o.duration / o.samples;
   const double w0 = sceneLanczosEstimate(registry, scene);
   std::vector<RunSpec> specs;
+  std::vector<double> work;  // steps x masses of each run, for the progress lines
   for (int r : values) {
     SceneDocument doc = registry.atResolution(scene, r);
     const double w = sceneLanczosEstimate(registry, doc);
@@ -77,6 +88,7 @@ ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& s
     const long per = stepsPerSample(interval, dt);
     RunSpec spec{doc, study.integrator, interval / static_cast<double>(per), per, o.samples};
     spec.keepPositions = false;
+    if (o.runProgress) work.push_back(runWork(registry, spec));
     specs.push_back(spec);
     study.rows.push_back({});
     study.rows.back().resolution = r;
@@ -84,9 +96,20 @@ ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& s
   }
   std::vector<RunResult> runs(specs.size());
   std::vector<double> walls(specs.size());
+  if (o.runProgress) {
+    double total = 0.0;
+    for (double w : work) total += w;
+    o.runProgress->plan(static_cast<int>(specs.size()), total);
+  }
+  const std::string key = o.runProgress ? registry.resolutionRule(scene.json.at("lab").get<std::string>()).key : "";
   parallelFor(static_cast<int>(specs.size()), o.threads, [&](int i) {
     // The first run gives the observable and warms up; the timed runs give the wall time.
     runs[i] = runScene(registry, specs[i]);
+    if (o.runProgress) {
+      std::ostringstream what;
+      what << key << " = " << study.rows[i].resolution << ", " << study.integrator << " at dt = " << specs[i].dt << " s";
+      o.runProgress->finished(what.str(), work[i]);
+    }
     std::vector<double> timed;
     for (int r = 0; r < o.repeats; ++r) timed.push_back(runScene(registry, specs[i]).wallSeconds);
     walls[i] = timed.empty() ? runs[i].wallSeconds : median(timed);
@@ -113,6 +136,7 @@ ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& s
 Advice advise(const Registry& registry, const SceneDocument& scene, const AdviseOptions& o) {
   Advice advice;
   const double half = 0.5 * o.tolerance;
+  RunProgress progress("advise", o.progress);
 
   // 1. The coarsest resolution within half the tolerance (the scene's own when the lab has
   //    no resolution rule).
@@ -133,28 +157,52 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
     ro.resolutions = o.resolutions;
     ro.repeats = 0;  // the advisor counts costs; it does not time them
     ro.threads = o.threads;
-    ro.progress = o.progress;
+    ro.progress = false;
+    ro.runProgress = &progress;
+    ro.finerSteps = 0;
     advice.resolution = resolutionStudy(registry, scene, ro);
     advice.chosenResolution = advice.resolution.rows[advice.resolution.chosen].resolution;
     model = registry.atResolution(scene, advice.chosenResolution);
   }
   const std::string observable = pickObservable(registry, model, o.observable).first;
 
-  // 2. At that resolution: a dt ladder from about RK4's limit down, and an RK4 reference one
-  //    halving below the finest rung (2^levels below RK4's limit: far more accurate than
-  //    any rung it judges).
+  // 2. At that resolution: a dt ladder from about RK4's limit down, and an RK4 reference
+  //    converged on the observable: RK4 at 2 and then 4, 8, ... times below its limit, until
+  //    two successive halvings agree within a fiftieth of the tolerance's half (RK4's error
+  //    falls 16-fold per halving, so the finer one is then far more accurate than any rung it
+  //    judges), at most 2^(levels + 1) below. (A fixed reference 2^levels below the limit
+  //    took most of an hour on the cloth, and was never needed.)
   const double interval = o.duration / o.samples;
   const double w = sceneLanczosEstimate(registry, model);
   const double top = w > 0.0 ? 2.83 / w : interval;
   int first = 0;
   while (interval / std::ldexp(1.0, first) > top * (1.0 + 1e-9)) ++first;
   auto per = [](int level) { return 1L << level; };
-  const int refLevel = first + o.levels;
-  RunSpec refSpec{model, "rk4", interval / static_cast<double>(per(refLevel)), per(refLevel), o.samples};
-  refSpec.keepPositions = false;
-  const RunResult reference = runScene(registry, refSpec);
-  if (!reference.stable) throw std::runtime_error("the RK4 reference run blew up: " + reference.failure);
-  const std::vector<double> refSeries = observableSeries(reference, observable);
+  // (A run that blows up gives no series: damping can put RK4's real limit well below
+  //  2.83 / w_max, as on the cloth; the next halving is tried.)
+  auto referenceAt = [&](int level) -> std::optional<std::vector<double>> {
+    RunSpec spec{model, "rk4", interval / static_cast<double>(per(level)), per(level), o.samples};
+    spec.keepPositions = false;
+    progress.plan(1, runWork(registry, spec));
+    const RunResult run = runScene(registry, spec);
+    std::ostringstream what;
+    what << "the reference, rk4 at dt = " << spec.dt << " s" << (run.stable ? "" : ": blew up");
+    progress.finished(what.str(), runWork(registry, spec));
+    if (!run.stable) return std::nullopt;
+    return observableSeries(run, observable);
+  };
+  const int lastReference = first + std::max(o.levels + 1, 2);
+  int refLevel = first;
+  std::optional<std::vector<double>> refSeries;
+  while (refLevel < lastReference) {
+    std::optional<std::vector<double>> finer = referenceAt(++refLevel);
+    const bool converged = refSeries && finer && relativeError(*refSeries, *finer) <= half / 50.0;
+    refSeries = std::move(finer);
+    if (converged) break;
+  }
+  if (!refSeries) throw std::runtime_error("the RK4 reference blew up at every dt down to 2^-" +
+                                           std::to_string(lastReference - first) + " times its limit");
+  advice.referenceDt = interval / static_cast<double>(per(refLevel));
 
   // 3. Each integrator: the largest dt on the ladder that is stable and within half the
   //    tolerance (integrators in parallel, each walking down its ladder). A method stable at
@@ -167,19 +215,40 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
   while (frameLevel < first && interval / std::ldexp(1.0, frameLevel) > frame * (1.0 + 1e-9)) ++frameLevel;
   const std::vector<std::string> names = studyIntegrators(registry, model, o.integrators);
   advice.candidates.resize(names.size());
-  parallelFor(static_cast<int>(names.size()), o.threads, [&](int i) {
-    Candidate& c = advice.candidates[i];
-    c.integrator = names[i];
-    // The first rung at or below the method's own stability limit (stepStableDt).
+  // Every rung of every ladder is planned; the rungs below a ladder's answer are dropped.
+  const double modelMasses = registry.loadScene(model).sim->numOfMasses();
+  auto rungWork = [&](int level) { return modelMasses * static_cast<double>(per(level)) * o.samples; };
+  // Each ladder starts at the first rung at or below the method's own stability limit
+  // (sceneStepStableDt); a method stable at every dt at the frame length.
+  std::vector<int> startLevel(names.size(), first);
+  std::vector<std::string> limitNote(names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) {
     double limit = 0.0;
     try {
       limit = sceneStepStableDt(registry, model, names[i]);
     } catch (const NotImplemented& e) {
-      c.note = e.what();
-      return;
+      limitNote[i] = e.what();
+      continue;
     }
     int start = std::isinf(limit) ? frameLevel : 0;
     while (std::isfinite(limit) && start < first + o.levels - 1 && interval / std::ldexp(1.0, start) > limit * (1.0 + 1e-9)) ++start;
+    startLevel[i] = start;
+  }
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    for (int l = startLevel[i]; l < first + o.levels; ++l) progress.plan(1, rungWork(l));
+  }
+  parallelFor(static_cast<int>(names.size()), o.threads, [&](int i) {
+    Candidate& c = advice.candidates[i];
+    c.integrator = names[i];
+    const int start = startLevel[i];
+    auto dropFrom = [&](int level) {
+      for (int l = level; l < first + o.levels; ++l) progress.dropped(1, rungWork(l));
+    };
+    if (!limitNote[i].empty()) {
+      c.note = limitNote[i];
+      dropFrom(start);
+      return;
+    }
     for (int l = start; l < first + o.levels; ++l) {
       RunSpec spec{model, names[i], interval / static_cast<double>(per(l)), per(l), o.samples};
       spec.keepPositions = false;
@@ -188,14 +257,20 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
         run = runScene(registry, spec);
       } catch (const NotImplemented& e) {
         c.note = e.what();
+        dropFrom(l);
         return;
       }
-      const double error = run.stable ? relativeError(observableSeries(run, observable), refSeries) : INFINITY;
+      const double error = run.stable ? relativeError(observableSeries(run, observable), *refSeries) : INFINITY;
+      std::ostringstream what;
+      what << names[i] << " at dt = " << spec.dt << " s: "
+           << (run.stable ? (error <= half ? "within" : "outside") + std::string(" the tolerance") : "blew up");
+      progress.finished(what.str(), rungWork(l));
       c.error = error;  // kept when no rung meets the tolerance: the finest rung's error
       if (error <= half) {
         c.dt = spec.dt;
         c.error = error;
         c.evaluationsPerSecond = static_cast<double>(run.forceEvaluations + run.solverIterations) / o.duration;
+        dropFrom(l + 1);
         return;
       }
     }
@@ -203,7 +278,7 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
     note << "no dt down to " << interval / static_cast<double>(per(first + o.levels - 1)) << " s met the tolerance (error "
          << c.error << " there)";
     c.note = note.str();
-  }, o.progress ? "advisor: integrators" : "");
+  });
 
   // 4. The cheapest in force evaluations per simulated second (ties: the smaller error).
   for (int i = 0; i < static_cast<int>(advice.candidates.size()); ++i) {

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "parallel.hpp"
 #include "springlab/step_stability.hpp"
-#include "springlab/studies/parallel.hpp"
 
 namespace springlab::studies {
 
@@ -16,12 +16,13 @@ namespace {
 
 // Does the scene survive `duration` at dt? (nullopt: too many steps to try)
 std::optional<bool> survives(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                             double dt, double duration, long maxSteps, double stiffnessScale) {
+                             double dt, double duration, long maxSteps, double stiffnessScale, double swingDt) {
   const long steps = std::max(1L, std::lround(std::ceil(duration / dt)));
   if (steps > maxSteps) return std::nullopt;
   RunSpec spec{scene, integrator, dt, steps, 1};
   spec.keepPositions = false;
   spec.stiffnessScale = stiffnessScale;
+  spec.swingDt = swingDt;
   return runScene(registry, spec).stable;
 }
 
@@ -48,12 +49,13 @@ double stabilityTrialDuration(const Registry& registry, const SceneDocument& sce
 }
 
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                      double duration, double firstGuess, double tolerance, long maxSteps, double stiffnessScale) {
+                      double duration, double firstGuess, double tolerance, long maxSteps, double stiffnessScale,
+                      double swingDt) {
   CriticalDt out;
   out.integrator = integrator;
   auto stable = [&](double dt) {
     ++out.trials;
-    return survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale);
+    return survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale, swingDt);
   };
 
   // Bracket: double while stable, halve while unstable.
@@ -117,7 +119,8 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
                            : w > 0.0 ? (std::isinf(predicted) ? 100.0 / w : 2.0 / w)
                                      : 0.01;
       const double duration = o.duration > 0.0 ? o.duration : stabilityTrialDuration(registry, scene, names[i], predicted, study.duration);
-      results[i] = criticalDt(registry, scene, names[i], duration, guess, o.tolerance, o.maxSteps);
+      const double swingDt = std::isfinite(predicted) && predicted > 0.0 ? 0.5 * predicted : 0.0;
+      results[i] = criticalDt(registry, scene, names[i], duration, guess, o.tolerance, o.maxSteps, 1.0, swingDt);
       results[i].predicted = predicted;
       results[i].duration = duration;
     } catch (const NotImplemented& e) {
@@ -140,7 +143,7 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
   LoadedScene loaded = registry.loadScene(scene);
   map.integrator = o.integrator.empty() ? loaded.settings.integrator : o.integrator;
   map.stabilityConstant = stabilityConstant(registry, map.integrator);
-  map.springConstant = loaded.sim->springs.empty() ? 0.0 : loaded.sim->springs.front().springConstant;
+  map.springConstant = loaded.sim->springs().empty() ? 0.0 : loaded.sim->springs().front().springConstant;
   map.scales = o.stiffnessScales;
   if (map.scales.empty()) {
     for (int k = -6; k <= 6; ++k) map.scales.push_back(std::pow(10.0, k / 3.0));
@@ -156,7 +159,10 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
   const double atScale1 = sceneStepStableDt(registry, scene, map.integrator, 1.0);
   const double centre = std::isfinite(atScale1) && atScale1 > 0.0 ? atScale1 : 2.0 / std::max(w1, 1e-12);
 
-  // Every cell is one run over the same simulated time.
+  // Every cell is one run over the same simulated time, its passivity detector allowing the
+  // swing measured at half the limit of its stiffness.
+  std::vector<double> swingDts;
+  for (double limit : map.predicted) swingDts.push_back(std::isfinite(limit) && limit > 0.0 ? 0.5 * limit : 0.0);
   for (double s : map.scales) {
     for (int j = 0; j < o.dtCount; ++j) {
       const double exponent = -1.5 + 3.0 * j / std::max(1, o.dtCount - 1);
@@ -166,7 +172,8 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
   parallelFor(static_cast<int>(map.cells.size()), o.threads, [&](int i) {
     StabilityMapCell& cell = map.cells[i];
     const std::optional<bool> ok =
-        survives(registry, scene, map.integrator, cell.dt, map.duration, o.maxSteps, cell.stiffnessScale);
+        survives(registry, scene, map.integrator, cell.dt, map.duration, o.maxSteps, cell.stiffnessScale,
+                 swingDts[static_cast<std::size_t>(i) / static_cast<std::size_t>(std::max(1, o.dtCount))]);
     cell.run = ok.has_value();
     cell.stable = ok.value_or(true);
   }, o.progress ? "stability map cells" : "");

@@ -5,7 +5,7 @@
 #include <iomanip>
 #include <stdexcept>
 
-#include "springlab/studies/parallel.hpp"
+#include "parallel.hpp"
 
 namespace springlab::studies {
 

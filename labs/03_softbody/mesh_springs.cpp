@@ -17,18 +17,18 @@ namespace {
 }  // namespace
 
 std::vector<Spring> edgeSprings(const SurfaceMesh& mesh, double springConstant, double frictionConstant) {
-  // TODO exercise 3.2 (springs from the mesh): write this part; see handouts/03_softbody.md, section Exercise 3.2.
-  throw springlab::NotImplemented("3.2", "springs from the mesh", "handouts/03_softbody.md, section Exercise 3.2");
+  // TODO exercise 3.2 (springs from the mesh): write this part; see handouts/03_softbody.md, Exercise 3.2 (physics in section 2, The physics).
+  throw springlab::NotImplemented("3.2", "springs from the mesh", "handouts/03_softbody.md, Exercise 3.2 (physics in section 2, The physics)");
 }
 
 std::vector<Spring> oppositeSprings(const SurfaceMesh& mesh, double springConstant, double frictionConstant) {
-  // TODO exercise 3.2 (springs from the mesh): write this part; see handouts/03_softbody.md, section Exercise 3.2.
-  throw springlab::NotImplemented("3.2", "springs from the mesh", "handouts/03_softbody.md, section Exercise 3.2");
+  // TODO exercise 3.2 (springs from the mesh): write this part; see handouts/03_softbody.md, Exercise 3.2 (physics in section 2, The physics).
+  throw springlab::NotImplemented("3.2", "springs from the mesh", "handouts/03_softbody.md, Exercise 3.2 (physics in section 2, The physics)");
 }
 
 std::vector<Spring> secondRingSprings(const SurfaceMesh& mesh, double springConstant, double frictionConstant) {
-  // TODO exercise 3.2 (springs from the mesh): write this part; see handouts/03_softbody.md, section Exercise 3.2.
-  throw springlab::NotImplemented("3.2", "springs from the mesh", "handouts/03_softbody.md, section Exercise 3.2");
+  // TODO exercise 3.2 (springs from the mesh): write this part; see handouts/03_softbody.md, Exercise 3.2 (physics in section 2, The physics).
+  throw springlab::NotImplemented("3.2", "springs from the mesh", "handouts/03_softbody.md, Exercise 3.2 (physics in section 2, The physics)");
 }
 
 }  // namespace springlab::softbody

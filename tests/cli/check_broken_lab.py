@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """A compile error in one lab stops only that lab: in a student tree (tools/release.py) whose
 Lab 1 exercises are written (the reference's copied in) and whose Lab 2 has a syntax error,
-`./springlab sim` and `run` of a Lab 1 scene build and run, `./springlab check lab1` scores
-every point, a Lab 3 scene still builds and runs, while `run lab2` fails with the compiler's
+`./springlab sim` and `run` of a Lab 1 scene build and run, `./springlab check rope` scores
+every point, a Lab 3 scene still builds and runs, while `run net` fails with the compiler's
 error naming the broken file. The tree is configured by the script itself, as a student's
 first command does, so CMake's configure must not trip on the broken file either.
 
@@ -87,14 +87,20 @@ def main():
     # Lab 1 builds and runs beside the broken Lab 2: the first command configures the tree.
     proc, text = springlab("sim", "scenes/rope.json", "--steps", "10", "--out", "out/rope.json")
     expect("sim scenes/rope.json", proc, text, proc.returncode == 0, "sim: ")
-    proc, text = springlab("check", "lab1")
-    expect("check lab1", proc, text, proc.returncode == 0, "(100.0 %")
+    proc, text = springlab("check", "rope")
+    expect("check rope", proc, text, proc.returncode == 0, "(100.0 %")
     viewer = "SPRINGLAB_BUILD_VIEWER:BOOL=ON" in (tree / "build" / "CMakeCache.txt").read_text()
-    if viewer and shutil.which("xvfb-run"):
-        proc, text = springlab("run", "lab1", "--frames", "2")
-        expect("run lab1", proc, text, proc.returncode == 0, "snapshot written")
+    if viewer and shutil.which("Xvfb"):
+        proc, text = springlab("run", "rope", "--frames", "2")
+        expect("run rope", proc, text, proc.returncode == 0, "snapshot written")
     else:
-        print("run lab1: skipped (no viewer in this build, or no xvfb-run)")
+        print("run rope: skipped (no viewer in this build, or no Xvfb)")
+
+    # --reference in a student tree says at once that the tree has no solutions/ (exit 2),
+    # instead of a build failure with no compiler message above it.
+    proc, text = springlab("sim", "scenes/rope.json", "--reference", "--steps", "10", "--out", "out/ref.json")
+    expect("sim --reference", proc, text, proc.returncode == 2 and "build failed" not in text,
+           "solutions/, which a student tree does not have")
 
     # Lab 3 builds on Lab 1, not on Lab 2: its scene builds and runs (exit 3 names the first
     # of its exercises still a stub).
@@ -102,13 +108,13 @@ def main():
     expect("sim scenes/softbody_ball.json", proc, text, proc.returncode in (0, 3) and "build failed" not in text)
 
     # Lab 2 stops at its compile error, which names the file.
-    proc, text = springlab("run", "lab2", "--frames", "2")
-    expect("run lab2", proc, text, proc.returncode != 0, broken_rel, "build failed")
+    proc, text = springlab("run", "net", "--frames", "2")
+    expect("run net", proc, text, proc.returncode != 0, broken_rel, "build failed")
 
     for failure in failures:
         print(f"FAILED: {failure}", file=sys.stderr)
     if not failures:
-        print(f"with {broken_rel} broken: lab1 runs and scores 100 %, lab3 runs, lab2 names the file")
+        print(f"with {broken_rel} broken: rope runs and scores 100 %, softbody runs, net names the file")
     return 1 if failures else 0
 
 

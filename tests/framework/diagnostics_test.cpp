@@ -39,13 +39,15 @@ TEST(Diagnostics, KineticAndGravitationalEnergyAndMomentum) {
 TEST(Diagnostics, ElasticEnergyIsHalfKStretchSquared) {
   AnchoredOscillators sim(2, 1.0, 1.0);
   sim.state.pos = {Vec3(0, 0, 0), Vec3(1.5, 0, 0)};
-  sim.springs.push_back(Spring{0, 1, 40.0, 1.0, 0.0});
+  sim.editModel([](Simulation& model) { model.editSprings().push_back(Spring{0, 1, 40.0, 1.0, 0.0}); });
   EXPECT_DOUBLE_EQ(sim.energies().elastic, 0.5 * 40.0 * 0.25);
 }
 
 TEST(Diagnostics, GershgorinBoundOfAUniformChainIs2SqrtKOverM) {
   AnchoredOscillators sim(50, 0.05, 1.0);
-  for (int i = 0; i + 1 < 50; ++i) sim.springs.push_back(Spring{i, i + 1, 10000.0, 0.05, 0.0});
+  sim.editModel([](Simulation& model) {
+    for (int i = 0; i + 1 < 50; ++i) model.editSprings().push_back(Spring{i, i + 1, 10000.0, 0.05, 0.0});
+  });
   EXPECT_NEAR(springGershgorinBound(sim), 2 * std::sqrt(10000.0 / 0.05), 1e-9);
   EXPECT_NEAR(predictedStableDt(SymplecticEuler{}, springGershgorinBound(sim)), 2.0 / (2 * std::sqrt(2e5)), 1e-12);
 }
@@ -70,7 +72,7 @@ TEST(BlowUpCheck, QuietOnADampedStableRun) {
 TEST(BlowUpCheck, EnergyTheUserPutsInIsNotABlowUp) {
   // Dragging a mass 10 m away stores 10^6 J in a stiff spring: the user did it, not dt.
   AnchoredOscillators sim(2, 1.0, 1.0);
-  sim.springs.push_back(Spring{0, 1, 20000.0, 1.0, 0.0});
+  sim.editModel([](Simulation& model) { model.editSprings().push_back(Spring{0, 1, 20000.0, 1.0, 0.0}); });
   sim.togglePinned(0);
   EXPECT_NO_THROW({
     sim.grab(1, Vec3(11.0, 0, 0));
@@ -95,7 +97,7 @@ class PlantedForces final : public Simulation {
     masses = {Mass{1.0, false}, Mass{1.0, false}, Mass{1.0, false}};
     state.pos = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(p == Plant::kSpringDirection ? 1.0 : 2.0, 0, 0)};
     state.vel.assign(3, Vec3::Zero());
-    springs = {Spring{0, 1, 10.0, 1.0, 0.0}, Spring{1, 2, 10.0, 1.0, 0.0}};
+    editSprings() = {Spring{0, 1, 10.0, 1.0, 0.0}, Spring{1, 2, 10.0, 1.0, 0.0}};
     gravitation = Vec3(0, -9.81, 0);
     markInitialState();
   }
@@ -106,7 +108,7 @@ class PlantedForces final : public Simulation {
   void accumulateForces(const State& s, std::vector<Vec3>& f) override {
     // A "spring" term that is not Lab 1's spring force: k times the unit vector between the
     // ends, 0/0 when they coincide.
-    for (const Spring& sp : springs) {
+    for (const Spring& sp : springs()) {
       const Vec3 d = s.pos[sp.mass2] - s.pos[sp.mass1];
       const Vec3 pull = sp.springConstant * 1e-3 * d / d.norm();
       f[sp.mass1] += pull;
@@ -136,7 +138,7 @@ TEST(BlowUpCheck, ANonFiniteSpringForceNamesTheSpring) {
   EXPECT_NE(what.find("from the spring forces"), std::string::npos) << what;
   EXPECT_NE(what.find("spring 1 (masses 1-2) has both ends at one point"), std::string::npos) << what;
   // The diagnosis leaves the model as it was.
-  EXPECT_EQ(sim.springs[0].springConstant, 10.0);
+  EXPECT_EQ(sim.springs()[0].springConstant, 10.0);
   EXPECT_EQ(sim.gravitation, Vec3(0, -9.81, 0));
 }
 

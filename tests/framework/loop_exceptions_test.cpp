@@ -6,9 +6,9 @@
 #include <atomic>
 #include <vector>
 
-#include <springlab/loop_exceptions.hpp>
+#include "fast/loop_exceptions.hpp"
 #include <springlab/not_implemented.hpp>
-#include <springlab/spring_batches.hpp>
+#include "fast/spring_batches.hpp"
 
 namespace springlab {
 namespace {

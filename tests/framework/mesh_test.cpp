@@ -132,6 +132,19 @@ TEST(MeshCheck, RefusesAnIndexOutOfRange) {
   EXPECT_NE(msg2.find("face 2 (vertices 0 7 2): vertex index 7 is out of range"), std::string::npos) << msg2;
 }
 
+// A polygon with a bad index: tinyobjloader drops it silently, and the surface check would
+// then blame a neighbour ("not closed"); the loader names the file, line and index instead.
+TEST(MeshCheck, RefusesAQuadWithAnIndexOutOfRangeNamingTheLine) {
+  const std::string path = write("quad_range.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 999 4\nf 4 3 2 1\n");
+  const std::string msg = messageOf([&] { loadMesh(path); });
+  EXPECT_NE(msg.find(path + ":5: face 1 (f 1 2 999 4): vertex index 999 is out of range"), std::string::npos)
+      << "the message must name the file, line, face and index: " << msg;
+  EXPECT_EQ(msg.find("not closed"), std::string::npos) << msg;
+  const std::string relative = write("relative_range.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf -1 -2 -4\n");
+  EXPECT_NE(messageOf([&] { loadMesh(relative); }).find(":4: face 1 (f -1 -2 -4): vertex index -4 is out of range"),
+            std::string::npos);
+}
+
 TEST(MeshFiles, RefuseMalformedFilesNamingTheLine) {
   const std::string bad = write("bad.asc", ascTetrahedron("Face 0: A:0 B:2\n" + kGoodFaces));
   const std::string msg = messageOf([&] { loadMesh(bad); });

@@ -186,6 +186,15 @@ TEST(ModelEdit, EditThatAddsMassesWithoutStateIsRefused) {
   EXPECT_THROW(sim.editModel([](Simulation& model) { model.masses.push_back(Mass{}); }), std::logic_error);
 }
 
+TEST(ModelEdit, SpringsChangeOnlyInsideEditModel) {
+  // The springs have one writer, so whatever a lab derives from them follows every change.
+  AnchoredOscillators sim(2, 1.0, 1.0);
+  EXPECT_THROW(sim.editSprings(), std::logic_error) << "springs must not be writable outside editModel";
+  sim.editModel([](Simulation& model) { model.editSprings().push_back(Spring{0, 1, 40.0, 1.0, 0.0}); });
+  ASSERT_EQ(sim.springs().size(), 1u) << "editModel must let the edit change the springs";
+  EXPECT_THROW(sim.editSprings(), std::logic_error) << "springs must not stay writable after editModel";
+}
+
 TEST(Simulation, RejectsDimensionOtherThan2Or3) {
   EXPECT_THROW(AnchoredOscillators(1, 1.0, 1.0, 0.0, 4), std::invalid_argument);
 }

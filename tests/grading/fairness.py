@@ -116,8 +116,13 @@ def grade(args, what, out, *extra):
         raise SystemExit(f"fairness.py: {' '.join(what)} failed with exit code {run.returncode}")
 
 
+def lab_dir(tag):
+    """The folder of the lab a results.json test is tagged with (its tag is the lab's id)."""
+    return {lab.id: lab.dir for lab in discover_labs()}.get(tag, tag)
+
+
 def outcomes(results):
-    return {(t["tags"][0], t["name"].split(" ", 1)[1]): (t["status"], t["tags"][1].split(" ", 1)[1])
+    return {(lab_dir(t["tags"][0]), t["name"].split(" ", 1)[1]): (t["status"], t["tags"][1].split(" ", 1)[1])
             for t in results["tests"]}
 
 
@@ -168,14 +173,14 @@ def main():
     shutil.copytree(ROOT / "solutions" / "01_rope", flat)
     grade(args, ["grade", str(flat), "--quiet", "--lab", "rope"], work / "flat_lab")
     data = json.loads((work / "flat_lab" / "results.json").read_text())
-    if {t["tags"][0] for t in data["tests"]} != {"01_rope"} or data["score"] != data["max_score"] \
+    if {lab_dir(t["tags"][0]) for t in data["tests"]} != {"01_rope"} or data["score"] != data["max_score"] \
             or data["max_score"] != labs["01_rope"].manifest["points"]:
         problems.append(f"flat files with --lab rope: {data['score']}/{data['max_score']}, expected Lab 1 only, full marks")
     grade(args, ["grade", str(flat), "--quiet"], work / "flat_guess")
     data = json.loads((work / "flat_guess" / "results.json").read_text())
     by_lab = {}
     for t in data["tests"]:
-        by_lab.setdefault(t["tags"][0], []).append(t)
+        by_lab.setdefault(lab_dir(t["tags"][0]), []).append(t)
     if sum(t["score"] for t in by_lab.get("01_rope", [])) != labs["01_rope"].manifest["points"]:
         problems.append("flat files without --lab: Lab 1 does not score full marks")
     if any(t["score"] for d, tests in by_lab.items() if d != "01_rope" for t in tests):

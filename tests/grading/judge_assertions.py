@@ -1,15 +1,16 @@
 #!/usr/bin/env python3
 """A student's function that returns a container of the wrong size fails its tests with a
-clear message, not undefined behaviour in the grader's judge (built with -D_GLIBCXX_ASSERTIONS,
-tests/CMakeLists.txt springlab_checked_objects).
+clear message, not undefined behaviour in the grader's judge: the judge checks the indices of
+what it replays (call_trace.hpp checkReplayedIndices) before any code uses them.
 
 The submission is Lab 1's reference (flat files, --lab rope) with buildRope (exercise 1.7)
 returning its positions cleared: size 0, but the memory still holds the right values. In
 the worker, the student's own process, the test's `pos[0]` reads that memory and the test
-passes; the judge replays an empty vector and, with the assertions, stops at `pos[0]`. So:
-  - BuildRope.FirstMassIsFixedAtTheConnectionPoint fails, and its message names the index
-    past the end (std::vector::operator[]) and the sizes to check;
-  - no exercise but 1.7 loses a point (its tests of the springs alone still pass).
+passes; the judge replays an empty vector of positions beside springs that join masses 0
+and 1. So:
+  - BuildRope.FirstMassIsFixedAtTheConnectionPoint fails, and its message says a spring's
+    mass lies past the masses the call gave back;
+  - no exercise but 1.7 loses a point.
 
     tests/grading/judge_assertions.py --cache build --work build/tests/grading/judge_assertions
 """
@@ -59,16 +60,16 @@ def main():
         if name == TEST:
             message = test.get("output", "")
             print(f"{TEST}: {message}")
-            if "index past the end" not in message or "std::vector::operator[]" not in message:
-                problems.append(f"{TEST}: the message does not name the index past the end of the returned "
-                                f"container: {message!r}")
+            if "cannot use what your code gave back" not in message or "but the call has 0 masses" not in message:
+                problems.append(f"{TEST}: the message does not say the springs' masses lie past the returned "
+                                f"positions: {message!r}")
     if not any(t["name"].split(" ", 1)[1] == TEST for t in results["tests"]):
         problems.append(f"{TEST} is not in the results")
     for line in problems:
         print(line, file=sys.stderr)
     if problems:
         return 1
-    print(f"a wrong-sized return fails exercise {EXERCISE} only, with the judge's assertion named")
+    print(f"a wrong-sized return fails exercise {EXERCISE} only, with the index past the end named")
     return 0
 
 

@@ -98,7 +98,10 @@ def main():
         worker, check, judge = (pathlib.Path(folder) / n for n in ("worker", "check", "judge"))
         shutil.copy2(args.worker, worker)
         shutil.copy2(args.check, check)
-        judge.write_text(f"#!{sys.executable}\n{JUDGE}")
+        # The judge runs as an unprivileged user of its own: its interpreter must be one that
+        # user can run (Debian's, not one under root's private home, as pyenv's is).
+        interpreter = "/usr/bin/python3" if os.access("/usr/bin/python3", os.X_OK) else sys.executable
+        judge.write_text(f"#!{interpreter}\n{JUDGE}")
         for program in (worker, check, judge):
             os.chmod(program, 0o755)
         sandbox = Sandbox(timeout=30)

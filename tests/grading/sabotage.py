@@ -21,6 +21,7 @@ import json
 import pathlib
 import re
 import shutil
+import os
 import stat
 import subprocess
 import sys
@@ -272,10 +273,141 @@ AssertionResult CmpHelperLT<double, double>(const char*, const char*, const doub
     std::this_thread::sleep_for(std::chrono::milliseconds(@SLEEP_MS@));
   }
   return {s.pos, s.vel};""", "control"),
+    # ---- attacks on the compiler (issue 28): it runs sealed, sees nothing of the grader ----
+    # .incbin of the reference's compiled object: were it readable, a loader would run it
+    # (here: the right answer whenever the bytes arrived).
+    "incbin_grader_object": ("", """
+asm(".pushsection .rodata\\n.global springlab_stolen\\nspringlab_stolen:\\n.incbin \\"@OBJECT@\\"\\n"
+    ".global springlab_stolen_end\\nspringlab_stolen_end:\\n.popsection");
+extern "C" const char springlab_stolen[], springlab_stolen_end[];
+""", """
+  if (springlab_stolen_end - springlab_stolen > 0) return {s.pos + s.vel * dt, s.vel + a * dt};
+  return {s.pos, s.vel};""", "control"),
+    # .incbin of the reference's source, of a hidden test and of a classmate's file, printed
+    # into the visible tests' messages: none of their text may reach any output.
+    **{f"incbin_{what}": ("<stdexcept>\n#include <string>", f"""
+asm(".pushsection .rodata\\n.global springlab_stolen\\nspringlab_stolen:\\n.incbin \\"{path}\\"\\n"
+    ".global springlab_stolen_end\\nspringlab_stolen_end:\\n.popsection");
+extern "C" const char springlab_stolen[], springlab_stolen_end[];
+""", """
+  throw std::runtime_error(std::string(springlab_stolen, springlab_stolen_end));""", "control")
+       for what, path in (("reference_source", "@SOLUTION@"), ("hidden_test", "@HIDDEN@"), ("classmate", "@CLASSMATE@"))},
+    # The compiler reading a device without end: its memory limit stops it.
+    "includes_dev_zero": ('"/dev/zero"', "", """
+  return {s.pos, s.vel};""", "control"),
+    # Probing the grading tree at compile time: the right answer only where the reference is seen.
+    "has_include_probe": ("", "", """
+#if __has_include("@SOLUTION@") || __has_include("@HIDDEN@")
+  return {s.pos + s.vel * dt, s.vel + a * dt};
+#else
+  return {s.pos, s.vel};
+#endif""", "control"),
+    # A 200 MB object (the assembler's .fill): the compiler's output limit stops it; nothing
+    # of it reaches the object cache.
+    "fill_200mb": ("", """
+asm(".pushsection .rodata\\n.fill 200000000, 1, 0\\n.popsection");
+""", """
+  return {s.pos + s.vel * dt, s.vel + a * dt};""", "control"),
+    # Weak definitions: of a framework function (keeps the library's out of the link) and of
+    # another exercise's function (the reference's is linked beside it).
+    "weak_framework_symbol": ("<springlab/diagnostics.hpp>", """
+namespace springlab {
+__attribute__((weak)) double springDampingRatio(const Simulation&) { return 0.0; }
+}  // namespace springlab
+""", """
+  return {s.pos + s.vel * dt, s.vel + a * dt};""", "control"),
+    "weak_other_exercise": ("", """
+namespace springlab::rope {
+__attribute__((weak)) Vec3 springDamperForce(const Vec3&, const Vec3&, const Vec3&, const Vec3&, double, double,
+                                             double) {
+  return Vec3::Zero();
+}
+}  // namespace springlab::rope
+""", """
+  return {s.pos + s.vel * dt, s.vel + a * dt};""", "control"),
     "does_not_compile": ("", "", """
   return {s.pos + s.vel * dt, s.vel + a * dt}  // a missing semicolon
   undeclared_variable += 1;""", "control"),
 }
+
+
+# Text only the grader holds: the reference's comment in the target exercise, a line of a hidden
+# test, a classmate's marker. None may appear in any output of any student.
+MARKERS = {"reference": "Both updates use the state at the start of the step.",
+           "hidden": "name the quantity and the inputs, never the reference's answer",
+           "classmate": f"springlab-classmate-marker-{uuid.uuid4().hex}"}
+
+
+def hidden_test_file():
+    files = sorted((ROOT / "tests" / TARGET_LAB / "hidden").glob("*.cpp"))
+    hits = [f for f in files if MARKERS["hidden"] in f.read_text()]
+    if not hits or MARKERS["reference"] not in (ROOT / "solutions" / TARGET_LAB / target_file()).read_text():
+        raise SystemExit("sabotage.py: a marker is gone from the reference or the hidden tests; update MARKERS")
+    return hits[0]
+
+
+# Forged call records (tests/support/call_trace.hpp) that buildRope's worker writes to the
+# grader's channel itself, then leaves: a spring joining a mass far past the rope's end, a
+# record cut short, a count of 2^40 masses. The judge must fail exercise 1.7's tests with a
+# sentence and never crash: they score the control of build_rope.cpp (the skeleton's file).
+FORGERIES = {
+    "index": """
+  putCount(frame, rope.masses.size());
+  for (const Mass& m : rope.masses) putValue(frame, m.m), putValue(frame, static_cast<unsigned char>(m.pinned));
+  putCount(frame, rope.springs.size());
+  for (std::size_t i = 0; i < rope.springs.size(); ++i) {
+    const Spring& sp = rope.springs[i];
+    putValue(frame, sp.mass1), putValue(frame, i + 1 == rope.springs.size() ? 1000000000 : sp.mass2);
+    putValue(frame, sp.springConstant), putValue(frame, sp.springLength), putValue(frame, sp.frictionConstant);
+    putValue(frame, static_cast<int>(sp.kind));
+  }
+  for (const auto* v : {&rope.pos, &rope.vel}) {
+    putCount(frame, v->size());
+    for (const Vec3& x : *v) putValue(frame, x.x()), putValue(frame, x.y()), putValue(frame, x.z());
+  }""",
+    "truncated": """
+  putCount(frame, rope.masses.size());
+  putValue(frame, 1.0);""",
+    "huge_count": """
+  putCount(frame, std::size_t{1} << 40);""",
+}
+
+
+def make_forged_frames(folder, solutions_copy, expect, cache_path):
+    record = cache_path / "tests" / "call_layer" / "rope" / "build_rope.record.cpp"
+    found = re.search(r"buildRope[^{]*\{\s*return trace::recorded\((\d+)u", record.read_text()) if record.exists() else None
+    if not found:
+        raise SystemExit(f"sabotage.py: {record}: no buildRope record to read its function id from")
+    reference = (ROOT / "solutions" / TARGET_LAB / "build_rope.cpp").read_text()
+    end = "  return rope;\n  // END EXERCISE 1.7"
+    if end not in reference:
+        raise SystemExit("sabotage.py: build_rope.cpp no longer ends exercise 1.7 with `return rope;`")
+    expect["_control_build_rope"] = "control_build_rope"
+    shutil.copy(ROOT / "labs" / TARGET_LAB / "build_rope.cpp", solutions_copy("_control_build_rope") / "build_rope.cpp")
+    helpers = """#include <cstdint>
+#include <cstdlib>
+#include <string>
+#include <unistd.h>
+
+namespace {
+template <class T>
+void putValue(std::string& out, const T& v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
+void putCount(std::string& out, std::size_t n) { putValue(out, static_cast<std::uint64_t>(n)); }
+}  // namespace
+"""
+    for kind, body in FORGERIES.items():
+        text = reference.replace("#include <springlab/rope/exercises.hpp>\n",
+                                 "#include <springlab/rope/exercises.hpp>\n" + helpers, 1)
+        text = text.replace(end, f"""  std::string frame;
+  putValue(frame, std::uint32_t{{{found[1]}}});
+  putValue(frame, std::uint8_t{{0}});
+{body.strip(chr(10))}
+  if (::write(3, frame.data(), frame.size()) < 0) std::_Exit(1);
+  std::_Exit(0);
+  return rope;
+  // END EXERCISE 1.7""")
+        (solutions_copy(f"forged_frame_{kind}") / "build_rope.cpp").write_text(text)
+        expect[f"forged_frame_{kind}"] = "control_build_rope"
 
 
 def patch(text, includes, prelude, body):
@@ -318,9 +450,16 @@ def make(folder, escape_marks, cache=None, timeout=3.0):
     shutil.copy(ROOT / "labs" / TARGET_LAB / name, solutions_copy("_control") / name)
 
     original = (ROOT / "solutions" / TARGET_LAB / name).read_text()
+    cache_path = pathlib.Path(cache or ROOT / "build").resolve()
+    # The classmate: the reference with a marker only the grader could leak.
+    expect["_classmate"] = "reference"
+    classmate = solutions_copy("_classmate") / name
+    classmate.write_text(classmate.read_text() + f"// {MARKERS['classmate']}\n")
+    objects = sorted(cache_path.glob(f"**/springlab_*_solution_objects.dir/**/{TARGET_LAB}/{name}.o"))
     places = {"@SOLUTION@": str(ROOT / "solutions" / TARGET_LAB / name), "@ROOT@": str(ROOT),
-              "@CACHE@": str(pathlib.Path(cache or ROOT / "build").resolve()),
-              "@SLEEP_MS@": str(max(100, int(timeout * 1000) - 300))}
+              "@CACHE@": str(cache_path), "@SLEEP_MS@": str(max(100, int(timeout * 1000) - 300)),
+              "@HIDDEN@": str(hidden_test_file()), "@CLASSMATE@": str(classmate.resolve()),
+              "@OBJECT@": str(objects[0] if objects else cache_path / "missing.o")}
     for sabotage, (includes, prelude, body, expectation) in SABOTAGES.items():
         text = patch(original, includes, prelude, body)
         for mark, value in places.items():
@@ -345,6 +484,21 @@ def make(folder, escape_marks, cache=None, timeout=3.0):
     expect["edits_header"] = "reference"
     (folder / "empty").mkdir()
     expect["empty"] = "all_zero"
+    # A lab folder that is a symbolic link to the reference (absolute, relative, and labs/
+    # itself deeper in a repository): never followed, so the lab is not submitted.
+    for kind in ("absolute", "relative", "deep"):
+        student = folder / f"symlinked_lab_{kind}"
+        labs_dir = student / "repo" / "deeper" if kind == "deep" else student / "labs"
+        labs_dir.parent.mkdir(parents=True)
+        if kind == "deep":
+            labs_dir.mkdir()
+            (labs_dir / "labs").symlink_to(ROOT / "solutions")
+        else:
+            labs_dir.mkdir()
+            target = ROOT / "solutions" / TARGET_LAB
+            (labs_dir / TARGET_LAB).symlink_to(os.path.relpath(target, labs_dir) if kind == "relative" else target)
+        expect[student.name] = "all_zero"
+    make_forged_frames(folder, solutions_copy, expect, cache_path)
     with zipfile.ZipFile(folder / "zip_escape.zip", "w") as zf:
         for path in sorted((ROOT / "solutions").rglob("*")):
             if path.is_file():
@@ -378,7 +532,9 @@ def check(out, expect, labs):
 
     def outcomes(student):
         tests = results[student]["tests"]
-        return {(t["tags"][0], t["name"].split(" ", 1)[1]): t["status"] for t in tests}
+        # A test's first tag is its lab's id; the suite names labs by folder.
+        folder_of = {lab.manifest["lab"]: lab.dir for lab in labs}
+        return {(folder_of.get(t["tags"][0], t["tags"][0]), t["name"].split(" ", 1)[1]): t["status"] for t in tests}
 
     for student, data in results.items():
         problems += [f"{student}: {p}" for p in schema_problems(data)]
@@ -393,8 +549,8 @@ def check(out, expect, labs):
                 want = "failed"
             elif kind == "lab_zero" and lab == TARGET_LAB:
                 want = "failed"
-            elif kind == "control" and lab == TARGET_LAB:
-                want = outcomes("_control")[key]
+            elif kind.startswith("control") and lab == TARGET_LAB:
+                want = outcomes("_" + kind)[key]
             else:
                 want = "passed" if kind != "all_zero" else "failed"
             if got[key] != want:
@@ -450,6 +606,40 @@ def grade_all(folder, out, args, *extra):
     return run.returncode == 0
 
 
+def compile_time_problems(out, expect, cache):
+    """What the attacks on the compiler and the judge must leave: no marker and no path of the
+    grader in any output, each limit named, the judge never crashed."""
+    problems = []
+    for student in expect:
+        text = "".join((out / student / n).read_text() for n in ("report.md", "results.json", "junit.xml"))
+        for what, marker in MARKERS.items():
+            if marker in text:
+                problems.append(f"{student}: the {what}'s text reaches its outputs")
+        for path in (str(ROOT), str(cache)):
+            if path in text:
+                problems.append(f"{student}: its outputs name the grader's path {path}")
+        if re.search(r"judge crashed|judge stopped|judge ended without a report", text):
+            problems.append(f"{student}: the judge crashed on what the student's code sent")
+
+    def report(student):
+        return " ".join((out / student / "report.md").read_text().split())
+
+    wanted = {"includes_dev_zero": "memory limit", "fill_200mb": "output limit",
+              "weak_framework_symbol": "redefines symbols", "weak_other_exercise": "defines functions of another",
+              "incbin_grader_object": "does not compile", "symlinked_lab_absolute": "symbolic link",
+              "symlinked_lab_relative": "symbolic link", "symlinked_lab_deep": "symbolic link",
+              "forged_frame_index": "a spring's second mass is 1000000000",
+              "forged_frame_huge_count": "a vector of 1099511627776 elements",
+              "forged_frame_truncated": "stopped while giving back"}
+    for student, phrase in wanted.items():
+        if phrase not in report(student):
+            problems.append(f"{student}: the report does not say '{phrase}'")
+    oversized = [p.name for p in (cache / "grader-objects").glob("*.o") if p.stat().st_size > 32 << 20]
+    if oversized:
+        problems.append(f"fill_200mb: the object cache keeps objects above its limit: {oversized}")
+    return problems
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--cache", required=True, help="a build of this tree with the grading programs built")
@@ -503,6 +693,7 @@ def main():
     for student in ("calls_reference", "includes_reference"):
         if "graded as the released skeleton" not in (out / student / "report.md").read_text():
             problems.append(f"{student}: the report does not say the file was replaced by the skeleton's")
+    problems += compile_time_problems(out, expect, pathlib.Path(args.cache).resolve())
     for problem in problems:
         print(f"PROBLEM: {problem}", file=sys.stderr)
     if problems:

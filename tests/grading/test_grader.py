@@ -170,6 +170,45 @@ class Outputs(unittest.TestCase):
         self.assertIn("Exercise 9.1: one  2/3  (public 2/2, hidden 1 point not run here", out.getvalue())
 
 
+class ReportsCarryEveryNote(Temp):
+    def test_report_md_has_the_notes_of_results_json(self):
+        m = manifest.load_manifest(self.manifest(MANIFEST))
+        lab = results.LabResult(m, [results.TestResult(m["exercises"][0], t, False, "failed", 0.0)
+                                    for t in m["exercises"][0]["tests"]], ["a lab note\nits second line"])
+        zip_note = "skipped zip entry '../../x': its path leads outside the submission"
+        reports.write_outputs(self.tmp / "out", [lab], "Grade of x", 1.0, 7, [zip_note])
+        data = json.loads((self.tmp / "out" / "results.json").read_text())
+        report = (self.tmp / "out" / "report.md").read_text()
+        for note in (zip_note, "a lab note", "its second line"):
+            self.assertIn(note, data["output"])
+            self.assertIn(note, report)
+
+
+class StudentReadmeStatesTheLimits(unittest.TestCase):
+    """The student README's limits are the grader's (a changed limit changes the README)."""
+
+    def test_limits_and_forbidden_calls(self):
+        from springlab_grader import lab_grader, sandbox, sealed_compile  # noqa: PLC0415
+        text = (ROOT / "tools" / "templates" / "README.student.md").read_text()
+        limits = sandbox.Sandbox()
+        for stated in (f"{limits.timeout:g} s of wall time, {limits.timeout + 2:g} s of CPU time",
+                       f"{limits.memory_mb} MiB per test", f"{limits.file_mb} MiB per test",
+                       f"the stack {limits.stack_mb} MiB",
+                       f"{sealed_compile.MEMORY_MB} MiB of memory, {sealed_compile.CPU_SECONDS} s of CPU time, "
+                       f"{sealed_compile.WALL_SECONDS:g} s of wall time, {sealed_compile.OUTPUT_MB} MiB of object file",
+                       f"its compiles {lab_grader.COMPILE_BUDGET:g} s of CPU time",
+                       f"{lab_grader.BUDGET_FACTOR:g} times the reference's CPU time plus {lab_grader.BUDGET_FLOOR:g} s",
+                       f"{lab_grader.LAB_WALL_LIMIT:g} s of wall time in all"):
+            self.assertIn(stated, " ".join(text.split()))
+        # Each call the README names is one the check refuses (by its symbol).
+        symbols = {"getenv": "getenv", "fopen": "fopen", "std::filesystem": "_ZNSt10filesystem4pathC1Ev",
+                   "fork": "fork", "system": "system", "kill": "kill", "syscall": "syscall", "socket": "socket",
+                   "dlopen": "dlopen", "backtrace": "backtrace", "mprotect": "mprotect"}
+        for call, symbol in symbols.items():
+            self.assertTrue(integrity.forbidden_calls({symbol}), call)
+            self.assertIn(f"`{call}", text)
+
+
 class TimeBudget(unittest.TestCase):
     def test_lab_and_submission_budgets(self):
         total = gtest_runner.Budget(10, what="submission")
@@ -191,18 +230,31 @@ class TimeBudget(unittest.TestCase):
         self.assertGreater(slow, quick + 60)
         self.assertAlmostEqual(slow + quick, rule.limit)
 
-    def test_a_loaded_machine_stretches_no_budget(self):
-        # A class graded beside other work: load 14 on 2 cores makes a 12 s test count 12 / 7 s.
-        with tempfile.TemporaryDirectory() as folder:
-            loadavg = pathlib.Path(folder) / "loadavg"
-            loadavg.write_text("14.00 13.40 10.90 3/812 4242\n")
-            self.assertAlmostEqual(gtest_runner.machine_slowdown(loadavg, cores=2), 7.0)
-            loadavg.write_text("0.40 0.50 0.60 1/812 4242\n")  # idle: counted as is
-            self.assertEqual(gtest_runner.machine_slowdown(loadavg, cores=2), 1.0)
-            loadavg.write_text("1.00 1.00 1.00 41/812 4242\n")  # a burst just now: 40 runnable
-            self.assertEqual(gtest_runner.machine_slowdown(loadavg, cores=2), gtest_runner.MAX_SLOWDOWN)
-            self.assertEqual(gtest_runner.machine_slowdown(pathlib.Path(folder) / "missing", cores=2), 1.0)
-        self.assertAlmostEqual(gtest_runner.budget_seconds(12.0, slowdown=7.0), 12.0 / 7.0)
+    def test_cpu_time_is_counted_and_a_wall_limit_bounds_waiting(self):
+        # A process that sleeps costs no CPU time; one that computes does (sandbox.reap).
+        import subprocess  # noqa: PLC0415
+        import time  # noqa: PLC0415
+        from springlab_grader.sandbox import reap  # noqa: PLC0415
+        sleeper = subprocess.Popen(["sleep", "0.3"])
+        code, cpu = reap(sleeper, time.monotonic() + 10)
+        self.assertEqual(code, 0)
+        self.assertLess(cpu, 0.2)
+        spinner = subprocess.Popen([sys.executable, "-c", "import time\nt = time.process_time()\n"
+                                                          "while time.process_time() - t < 0.5: pass"])
+        code, cpu = reap(spinner, time.monotonic() + 30)
+        self.assertEqual(code, 0)
+        self.assertGreater(cpu, 0.45)
+        hanging = subprocess.Popen(["sleep", "5"])
+        self.assertEqual(reap(hanging, time.monotonic() + 0.1), (None, None))
+        hanging.kill()
+        reap(hanging)
+        # The wall limit: spent by waiting alone, named in the message.
+        budget = gtest_runner.Budget(100.0, wall=0.05)
+        self.assertIsNone(budget.exhausted())
+        time.sleep(0.1)
+        self.assertIs(budget.exhausted(), budget)
+        self.assertIs(gtest_runner.Budget(None, parent=budget).past_wall_limit(), budget)
+        self.assertIn("wall-time limit", budget.message())
 
     def test_spent_budget_fails_the_remaining_tests(self):
         m = json.loads(json.dumps(MANIFEST))
@@ -342,34 +394,42 @@ class ObjectCacheChecksItsEntries(Temp):
         self.assertIsNone(cache.fetch("k", out, "a.cpp"))
         self.assertIsNone(cache.fetch("missing", out, "a.cpp"))
 
-class CallLayerFromTheHeader(Temp):
-    """tools/make_call_layer.py: the worker's record and forward files and the judge's replay
-    files follow the exercise header, one function per name, each in one exercise file."""
-    HEADER = """#pragma once
-namespace springlab::toy {
-// a comment with a call(x);
-struct Hit {
-  bool touching = false;
-  Vec3 normal = Vec3::UnitY();  // unit
-};
-enum class Side { Left, Right };
-Hit probe(const Vec3& x, double radius);
-void smooth(std::vector<Vec3>& pos, const std::vector<std::pair<int, int>>& pairs, int passes);
-int helperTheGivenCodeDefines(int n);
-}  // namespace springlab::toy
-"""
+    def test_size_cap_evicts_the_least_recently_used_and_huge_objects_stay_out(self):
+        import os  # noqa: PLC0415
+        cache = build_cache.ObjectCache(self.tmp / "cache", cap=3000)
+        (self.tmp / "a.d").write_text("a.o: a.cpp\n")
+        out = self.tmp / "out"
+        out.mkdir()
+        for number, key in enumerate(("old", "used", "new")):
+            (self.tmp / "a.o").write_bytes(b"x" * 1000)
+            cache.store(key, self.tmp / "a.o", self.tmp / "a.d")
+            os.utime(self.tmp / "cache" / f"{key}.sha256", (1000 + number, 1000 + number))
+        self.assertIsNotNone(cache.fetch("used", out, "a.cpp"))  # now the most recent
+        (self.tmp / "a.o").write_bytes(b"y" * 1000)
+        cache.store("newest", self.tmp / "a.o", self.tmp / "a.d")
+        self.assertIsNone(cache.fetch("old", out, "a.cpp"))
+        self.assertIsNotNone(cache.fetch("used", out, "a.cpp"))
+        self.assertIsNotNone(cache.fetch("newest", out, "a.cpp"))
+        self.assertLessEqual(sum(p.stat().st_size for p in (self.tmp / "cache").iterdir()), 3000)
+        huge = self.tmp / "huge.o"
+        with open(huge, "wb") as f:
+            f.truncate(build_cache.ObjectCache.OBJECT_LIMIT + 1)
+        cache.store("huge", huge, self.tmp / "a.d")
+        self.assertIsNone(cache.fetch("huge", out, "a.cpp"))
 
-    def generate(self, header=HEADER, files=None):
+class CallLayerFromTheManifest(Temp):
+    """tools/make_call_layer.py: the worker's record and forward files and the judge's replay
+    files follow the manifest's exercise files and declarations, one function per name."""
+    MANIFEST = {"lab": "toy", "values": {"Hit": ["touching", "normal"]}, "exercises": [
+        {"id": "9.1", "file": "probe.cpp", "functions": ["Hit probe(const Vec3& x, double radius)"]},
+        {"id": "9.2", "file": "smooth.cpp", "functions": [
+            "void smooth(std::vector<Vec3>& pos, const std::vector<std::pair<int, int>>& pairs, int passes)"]}]}
+
+    def generate(self, manifest=None):
         sys.path.insert(0, str(ROOT / "tools"))
         import make_call_layer  # noqa: PLC0415
-        solutions = self.tmp / "solutions"
-        solutions.mkdir(exist_ok=True)
-        for name, text in (files or {"probe.cpp": "Hit probe(const Vec3& x, double radius) {\n  return {};\n}\n",
-                                     "smooth.cpp": "void smooth(std::vector<Vec3>& pos, const std::vector<std::pair"
-                                                   "<int, int>>& pairs, int passes) {\n  smooth(pos, pairs, 0);\n}\n"}).items():
-            (solutions / name).write_text(text)
-        (self.tmp / "exercises.hpp").write_text(header)
-        make_call_layer.generate("toy", self.tmp / "exercises.hpp", solutions, self.tmp / "out")
+        path = self.manifest(manifest or self.MANIFEST)
+        make_call_layer.generate(path, self.tmp / "out")
         return self.tmp / "out"
 
     def test_functions_by_file(self):
@@ -387,25 +447,27 @@ int helperTheGivenCodeDefines(int n);
         self.assertIn('trace::replayCall(1u, "smooth")', replay)
         self.assertIn("get(r, pos);", replay)
 
-    def test_lab_types_get_values_and_casts(self):
+    def test_values_bind_every_field_and_forward_reads_the_same_layout(self):
         out = self.generate()
         values = (out / "values.hpp").read_text()
         self.assertIn("put(w, v.touching);", values)
         self.assertIn("put(w, v.normal);", values)
+        self.assertIn("auto& [field0, field1] = v;", values)  # another field count does not compile
         forward = (out / "probe.forward.cpp").read_text()
         self.assertIn("namespace springlab::toy_reference", forward)
-        self.assertIn("reinterpret_cast<Hit*>(&result)", forward)
+        self.assertIn("forwardCall<Hit>(&::springlab::toy::student_probe, x, radius)", forward)
 
-    def test_overloads_are_refused(self):
-        header = self.HEADER.replace("int helperTheGivenCodeDefines(int n);", "Hit probe(const Vec3& x);")
-        with self.assertRaisesRegex(SystemExit, "overloaded exercise functions \\(probe\\)"):
-            self.generate(header)
+    def test_a_function_declared_twice_is_refused(self):
+        manifest = json.loads(json.dumps(self.MANIFEST))
+        manifest["exercises"][1]["functions"].append("Hit probe(const Vec3& x)")
+        with self.assertRaisesRegex(SystemExit, "declared twice \\(probe\\)"):
+            self.generate(manifest)
 
-    def test_a_function_in_two_files_is_refused(self):
-        files = {"probe.cpp": "Hit probe(const Vec3& x, double radius) {\n  return {};\n}\n",
-                 "copy.cpp": "Hit probe(const Vec3& x, double radius) {\n  return {};\n}\n"}
-        with self.assertRaisesRegex(SystemExit, "probe is defined in 2 files"):
-            self.generate(files=files)
+    def test_a_malformed_declaration_names_file_and_field(self):
+        manifest = json.loads(json.dumps(self.MANIFEST))
+        manifest["exercises"][0]["functions"] = ["probe"]
+        with self.assertRaisesRegex(SystemExit, r"exercises.json: exercises\[0\]\.functions: `probe` is not a declaration"):
+            self.generate(manifest)
 
 
 class JudgedOutcomes(unittest.TestCase):
@@ -539,6 +601,160 @@ std::vector<double> f(const std::vector<double>& x) {
                 found = self.compiled(name, code)
                 self.assertTrue(found, f"{name}: nothing found")
                 self.assertTrue(any(what in reached for _, reached in found), found)
+
+    def test_weak_definitions_count_as_definitions(self):
+        import subprocess  # noqa: PLC0415
+        source = self.tmp / "weak.cpp"
+        source.write_text("namespace testing::internal { __attribute__((weak)) bool IsTrue(bool c) { return !c; } }\n"
+                          "__attribute__((weak)) int weakData = 3;\nint strong() { return 1; }\n")
+        obj = self.tmp / "weak.o"
+        subprocess.run(["g++", "-std=c++20", "-O2", "-c", str(source), "-o", str(obj)], check=True)
+        defined = integrity.symbols_by_file([obj])[str(obj)]
+        self.assertIn("_ZN7testing8internal6IsTrueEb", defined)
+        self.assertIn("weakData", defined)
+        self.assertIn("_Z6strongv", defined)
+
+    def test_check_makes_the_call_check_of_grade_with_its_sentence(self):
+        # A student's build: compile_commands.json names the exercise objects of the program.
+        import subprocess  # noqa: PLC0415
+        from springlab_grader import student_check  # noqa: PLC0415
+        lab = labs.discover_labs()[0]
+        build = self.tmp / "build"
+        (build / "tests").mkdir(parents=True)
+        (build / "tests" / f"{lab.name}_grading_student").write_text("")
+        objects = build / f"springlab_{lab.name}_student_objects.dir"
+        objects.mkdir()
+        name = sorted(submission.exercise_names(lab))[0]
+        source = self.tmp / name
+        source.write_text('#include <cstdlib>\nbool debugging() { return std::getenv("DEBUG") != nullptr; }\n')
+        subprocess.run(["g++", "-O2", "-c", str(source), "-o", str(objects / f"{name}.o")], check=True)
+        (build / "compile_commands.json").write_text(json.dumps([{
+            "directory": str(build), "file": str(source),
+            "command": f"/usr/bin/c++ -O2 -o {objects.name}/{name}.o -c {source}"}]))
+        flagged = student_check.forbidden_call_notes(build / "tests" / f"{lab.name}_grading_student", ROOT, lab.dir)
+        note, exercises = flagged[name]
+        self.assertEqual(exercises, labs.exercises_in(lab.solution / name))
+        why = integrity.forbidden_call_reason(integrity.undefined_symbols(objects / f"{name}.o"))
+        self.assertEqual(note, integrity.replaced_note(name, why, exercises))
+        self.assertIn("calls getenv, which reach the environment or command line", note)
+        # A student tree (no solutions/) finds the file's exercises in the lab folder's README.
+        self.assertEqual(student_check.exercises_by_file(self.tmp / "nowhere", lab.dir), {})
+        (self.tmp / "student" / "labs").mkdir(parents=True)
+        import shutil  # noqa: PLC0415
+        shutil.copytree(lab.skeleton, self.tmp / "student" / "labs" / lab.dir)
+        self.assertEqual(student_check.exercises_by_file(self.tmp / "student", lab.dir)[name], exercises)
+
+
+class SealedCompile(Temp):
+    """The compiler's sandbox (sealed_compile.py) against a grading tree of mode 700: the
+    framework's headers are found (staged), nothing of the tree is (`#include`, `__has_include`,
+    `.incbin`), and each limit stops the compiler with a sentence naming it."""
+
+    def setUp(self):
+        super().setUp()
+        from springlab_grader import judged_run, sealed_compile  # noqa: PLC0415
+        if judged_run.bubblewrap() is None:
+            self.skipTest("bubblewrap cannot create namespaces here")
+        self.sc = sealed_compile
+        self.tree = self.tmp / "tree"
+        (self.tree / "framework" / "include" / "springlab").mkdir(parents=True)
+        (self.tree / "framework" / "include" / "springlab" / "seven.hpp").write_text("inline int seven() { return 7; }\n")
+        (self.tree / "solutions").mkdir()
+        self.secret = self.tree / "solutions" / "secret.cpp"
+        self.secret.write_text("SPRINGLAB_REFERENCE_MARKER\n")
+        self.tmp.chmod(0o700)
+        self.tree.chmod(0o700)
+        self.work = pathlib.Path(tempfile.mkdtemp(prefix="springlab-sealed-test-"))
+        self.addCleanup(__import__("shutil").rmtree, self.work, True)
+        self.work.chmod(0o711)
+        (self.work / "src").mkdir(mode=0o755)
+        (self.work / "obj").mkdir()
+        sandbox = sealed_compile.compile_sandbox()
+        if sandbox.identity():
+            import os  # noqa: PLC0415
+            os.chown(self.work / "obj", *sandbox.identity())
+        self.sandbox = sandbox
+        self.compiler = sealed_compile.sealed_compiler(
+            ["/usr/bin/c++", f"-I{self.tree / 'framework' / 'include'}", "-O1", "-std=c++20"], self.tree, True)
+
+    def compile(self, name, code, sandbox=None):
+        source = self.work / "src" / name
+        source.write_text(code)
+        source.chmod(0o644)
+        return self.compiler.run(self.work, name, sandbox or self.sandbox)
+
+    def test_headers_at_neutral_paths(self):
+        self.assertIn("-I/springlab/framework/include", self.compiler.argv)
+        run = self.compile("ok.cpp", "#include <springlab/seven.hpp>\n#include <vector>\nint f() { return seven(); }\n")
+        self.assertEqual(run.returncode, 0, run.output)
+        self.assertTrue((self.work / "obj" / "ok.cpp.o").is_file())
+        self.assertIn("/springlab/framework/include/springlab/seven.hpp", (self.work / "obj" / "ok.cpp.d").read_text())
+
+    def test_nothing_of_the_tree_is_visible(self):
+        probe = f'#if __has_include("{self.secret}")\n#error the tree is visible\n#endif\nint f();\n'
+        self.assertEqual(self.compile("probe.cpp", probe).returncode, 0)
+        for name, code in (("incbin.cpp", f'asm(".incbin \\"{self.secret}\\"");\n'),
+                           ("include.cpp", f'#include "{self.secret}"\n')):
+            with self.subTest(name):
+                run = self.compile(name, code)
+                self.assertNotEqual(run.returncode, 0)
+                self.assertNotIn("SPRINGLAB_REFERENCE_MARKER", run.output)
+                self.assertNotIn(str(self.tree), self.sc.scrub(run.output, {self.tree: "<grading tree>"}))
+
+    def test_limits_stop_it_with_a_sentence(self):
+        import dataclasses  # noqa: PLC0415
+        small = dataclasses.replace(self.sandbox, memory_mb=512, file_mb=4)
+        run = self.compile("zero.cpp", '#include "/dev/zero"\n', small)
+        self.assertIn("memory limit", self.sc.stop_reason(run, "zero.cpp") or "", run.output)
+        run = self.compile("fill.cpp", 'asm(".fill 50000000, 1, 0");\n', small)
+        self.assertIn("output limit", self.sc.stop_reason(run, "fill.cpp") or "", run.output)
+        self.assertIsNone(self.sc.stop_reason(self.compile("typo.cpp", "int f() { return x; }\n"), "typo.cpp"))
+
+    def test_an_include_folder_holding_the_tree_is_refused(self):
+        with self.assertRaisesRegex(errors.GradeError, "solutions/"):
+            self.sc.sealed_compiler(["/usr/bin/c++", f"-I{self.tree}"], self.tree, True)
+
+
+class StagesOfEndedGradersGo(Temp):
+    def test_a_stage_whose_grader_ended_is_removed(self):
+        import subprocess  # noqa: PLC0415
+        from springlab_grader import staging  # noqa: PLC0415
+        ended = subprocess.Popen(["true"])
+        ended.wait()
+        for name, pid in (("springlab-stage-ended", ended.pid), ("springlab-stage-alive", __import__("os").getpid())):
+            (self.tmp / name).mkdir()
+            (self.tmp / name / "pid").write_text(str(pid))
+        staging.remove_stale_stages(self.tmp)
+        self.assertFalse((self.tmp / "springlab-stage-ended").exists())
+        self.assertTrue((self.tmp / "springlab-stage-alive").exists())
+
+
+class SymlinkedLabFolders(Temp):
+    """A lab folder (or labs/) that is a symbolic link, absolute or relative, at any depth, is
+    never followed, and the note does not print where it leads."""
+
+    def test_links_are_refused_with_a_note(self):
+        lab = labs.discover_labs()[0]
+        outside = self.tmp / "outside" / lab.dir
+        outside.mkdir(parents=True)
+        for name in submission.exercise_names(lab):
+            (outside / name).write_text("// the reference\n")
+        for kind in ("absolute", "relative", "deep", "labs"):
+            with self.subTest(kind):
+                root = self.tmp / kind
+                nested = root / "repo" / "deeper" if kind == "deep" else root
+                nested.mkdir(parents=True)
+                if kind == "labs":
+                    (nested / "labs").symlink_to(outside.parent)
+                elif kind == "relative":
+                    (nested / lab.dir).symlink_to(pathlib.Path("..") / "outside" / lab.dir)
+                else:
+                    (nested / lab.dir).symlink_to(outside)
+                notes = []
+                found = submission.locate_labs(root, [lab], notes, lab.name)
+                self.assertIsNone(found[lab.dir])
+                self.assertTrue(any("symbolic link" in n and "refused" in n for n in notes), notes)
+                self.assertFalse(any(str(self.tmp) in n for n in notes), notes)
 
 
 if __name__ == "__main__":

@@ -12,7 +12,11 @@ in a student tree it runs as written, and exit 3 naming a missing exercise count
 
 A command passes when it exits 0 (or 3 as above, or the exit EXPECTED_EXIT gives an example that
 shows a failure on purpose), within its time cap, and a file it names with --out exists after a
-clean exit. Commands too costly for a test run, and spans that only name a
+clean exit. A number the handout states about a scene is checked the same way: a code-block
+command whose comment says `# prints NAME = VALUE` (or `NAME > VALUE`, `NAME < VALUE`; several
+joined by `;`) passes only when its output holds `NAME = X` (or `NAME X`) with X equal to VALUE
+to the digits VALUE is written with (half a unit of its last digit), or beyond the bound; so
+the handout's prose quotes the number its command prints, and neither can drift alone. Commands too costly for a test run, and spans that only name a
 command or hold a placeholder, are SKIPPED with their reason (printed; listed in SKIP below):
 never silently. --list prints what would run and what is skipped, and runs nothing.
 """
@@ -28,11 +32,15 @@ import time
 SKIP = [
     (r"^\./springlab bench\b", "times the reference for about 3 minutes (Google Benchmark); "
                                "bench.springlab_bench.report_from_one_quick_run covers it"),
+    (r"^\./springlab (web|site)\b", "builds with Emscripten for minutes; web.pages and web.site build "
+                                      "and test the same pages and site"),
 ]
 # Commands whose point is to fail in a known way: (regex, exit code, why the handout shows it).
 EXPECTED_EXIT = [
     (r"^\./springlab sim scenes/net_thesis\.json .*--integrator explicit_euler", 4,
      "section 5: explicit Euler blows up on the thesis' cloth at dt = 1/60 s (exit 4, blow-up)"),
+    (r"^\./springlab run rope --integrator explicit_euler --dt 0\.0005", 4,
+     "section 5: explicit Euler blows up on the rope at dt = 0.5 ms; the headless run says so (exit 4)"),
 ]
 TIME_CAP_S = 240  # per command: a `run` renders 240 frames; a `check` runs a lab's tests
 
@@ -57,12 +65,45 @@ def commands(handout):
         elif not in_fence and line.startswith("    ") and stripped.startswith("./springlab"):
             code = stripped
         if code and code.startswith("./springlab"):
-            found.append((number, code.split("  #")[0].split(" #")[0].strip()))
+            comment = code.partition(" #")[2]
+            found.append((number, code.split("  #")[0].split(" #")[0].strip(), comment.strip()))
     # Inline spans, which may wrap over a line break.
     for m in re.finditer(r"`(\./springlab[^`]*)`", text):
         number = text.count("\n", 0, m.start()) + 1
-        found.append((number, " ".join(m.group(1).split())))
+        found.append((number, " ".join(m.group(1).split()), ""))
     return sorted(set(found))
+
+
+NUMBER = r"-?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?"
+
+
+def expectations(comment):
+    """[(name, relation, value as written)] from a comment `prints NAME = VALUE; NAME > VALUE`."""
+    found = []
+    if comment.startswith("prints "):
+        for part in comment[len("prints "):].split(";"):
+            m = re.fullmatch(rf"\s*([a-z_][a-z_ ]*?)\s*(=|>|<)\s*({NUMBER})(?:\s*\S*)?\s*", part)
+            if m:
+                found.append((m.group(1), m.group(2), m.group(3)))
+    return found
+
+
+def number_problems(output, wanted):
+    """What in OUTPUT disagrees with the handout's numbers WANTED (expectations())."""
+    problems = []
+    for name, relation, written in wanted:
+        values = re.findall(rf"\b{re.escape(name)}(?: =)? ({NUMBER})", output)
+        if not values:
+            problems.append(f"the output has no `{name} = ...` (the handout says {name} {relation} {written})")
+            continue
+        got, value = float(values[-1]), float(written)
+        decimals = len(written.split(".")[1].split("e")[0].split("E")[0]) if "." in written else 0
+        exponent = int(re.split("[eE]", written)[1]) if re.search("[eE]", written) else 0
+        slack = 0.5 * 10.0 ** (exponent - decimals)
+        fits = {"=": abs(got - value) <= slack * (1 + 1e-9), ">": got > value, "<": got < value}[relation]
+        if not fits:
+            problems.append(f"the handout says {name} {relation} {written}, the command printed {values[-1]}")
+    return problems
 
 
 def why_skipped(command):
@@ -72,7 +113,8 @@ def why_skipped(command):
     words = shlex.split(command)
     if len(words) < 3:
         return "names the command only, with nothing to run it on"
-    if re.search(r"[<\[]", command) or any(re.fullmatch(r"[A-Z][A-Z_]*", w) for w in words):
+    # (`=[` is a JSON value, as in --set net.colliders.spheres=[], not a placeholder.)
+    if re.search(r"<|(?<![=,\[])\[", command) or any(re.fullmatch(r"[A-Z][A-Z_]*", w) for w in words):
         return "holds a placeholder (<...>, [...] or a name in capitals such as DT)"
     return None
 
@@ -87,7 +129,7 @@ def main():
     failures, ran, skipped = [], 0, 0
     seen = {}  # command -> where it ran first
     for handout in sorted((root / "handouts").glob("0*.md")):
-        for number, command in commands(handout):
+        for number, command, comment in commands(handout):
             where = f"{handout.name}:{number}"
             if command in seen:
                 print(f"same as {seen[command]}: {command}")
@@ -122,6 +164,11 @@ def main():
                 print(f"        (expects exit {expected[0]}: {expected[1]})")
             if ok and out and code == 0 and not (root / out).exists():
                 ok, output = False, output + f"\n{out} was not written"
+            wrong = number_problems(output, expectations(comment)) if code == 0 else []
+            if ok and wrong:
+                ok, output = False, "\n".join(wrong) + "\n" + output
+            elif expectations(comment):
+                print(f"        (checks {comment})")
             print(f"{'ok' if ok else 'FAILED'} {where} ({seconds:.1f} s, exit {code}): {' '.join(words)}")
             if not ok:
                 failures.append(f"{where}: {' '.join(words)}: exit {code}\n{output[-3000:]}")

@@ -1,20 +1,20 @@
-// The cloth's force pass sorts its springs into families (springlab/spring_families.hpp) and
-// sums them per mass in its own order: the forces must still be every spring's force added to
-// both its ends, as a plain loop over the list gives them, to round-off; a spring list edited
-// after the first pass (reordered, rewired, with a duplicate, new k) through editModel must be
-// followed, not the families and copies made from the old one; and an edit behind editModel's
-// back must be reported.
+// The cloth's fast spring pass (framework/labs/net/src/fast_spring_forces.cpp) sorts its
+// springs into families (fast/spring_families.hpp) and sums them per mass in its own order:
+// the forces must still be every spring's force added to both its ends, as the plain loop of
+// net.cpp gives them, to round-off; a spring list edited (reordered, rewired, with a duplicate,
+// new k) through editModel, the springs' one writer, must be followed, not the families and
+// copies made from the old one.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstring>
-#include <stdexcept>
-#include <string>
 #include <random>
 #include <vector>
 
 #include <springlab/net/net.hpp>
-#include <springlab/spring_families.hpp>
+
+#include "fast/avx2.hpp"
+#include "fast/spring_families.hpp"
 
 namespace springlab {
 namespace {
@@ -37,11 +37,13 @@ std::unique_ptr<net::Net> randomCloth(unsigned seed) {
   std::uniform_real_distribution<double> jitter(-0.02, 0.02), speed(-1.0, 1.0), factor(0.5, 2.0);
   for (Vec3& x : cloth->state.pos) x += Vec3(jitter(rng), jitter(rng), jitter(rng));
   for (Vec3& v : cloth->state.vel) v = Vec3(speed(rng), speed(rng), speed(rng));
-  for (Spring& s : cloth->springs) {
-    s.springConstant *= factor(rng);
-    s.springLength *= factor(rng);
-    s.frictionConstant *= factor(rng);
-  }
+  cloth->editModel([&](Simulation& model) {
+    for (Spring& s : model.editSprings()) {
+      s.springConstant *= factor(rng);
+      s.springLength *= factor(rng);
+      s.frictionConstant *= factor(rng);
+    }
+  });
   return cloth;
 }
 
@@ -52,7 +54,7 @@ void plainForces(const net::Net& cloth, std::vector<Vec3>& f, std::vector<double
   const State& s = cloth.state;
   f.assign(s.pos.size(), Vec3::Zero());
   scale.assign(s.pos.size(), 0.0);
-  for (const Spring& sp : cloth.springs) {
+  for (const Spring& sp : cloth.springs()) {
     const Vec3 f1 = net::springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
                                            sp.springConstant, sp.springLength, sp.frictionConstant);
     f[sp.mass1] += f1;
@@ -96,27 +98,32 @@ TEST(NetForcePass, FollowsSpringsEditedThroughEditModel) {
   std::mt19937 rng(7);
 
   // The same springs in another order: the families' records moved.
-  cloth->editModel([&](Simulation& model) { std::shuffle(model.springs.begin(), model.springs.end(), rng); });
+  cloth->editModel([&](Simulation& model) {
+    std::vector<Spring>& springs = model.editSprings();
+    std::shuffle(springs.begin(), springs.end(), rng);
+  });
   EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after shuffling the spring list";
 
   // Rewired ends with the same count: one spring now joins two far masses, another is reversed.
   cloth->editModel([&](Simulation& model) {
-    model.springs[10].mass2 = static_cast<int>(model.masses.size()) - 1;
-    std::swap(model.springs[20].mass1, model.springs[20].mass2);
+    std::vector<Spring>& springs = model.editSprings();
+    springs[10].mass2 = static_cast<int>(model.masses.size()) - 1;
+    std::swap(springs[20].mass1, springs[20].mass2);
   });
   EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after rewiring two springs";
 
   // A second spring between the same masses (it fits no family) and one spring fewer.
   cloth->editModel([&](Simulation& model) {
-    model.springs.push_back(model.springs[30]);
-    model.springs.erase(model.springs.begin() + 40);
+    std::vector<Spring>& springs = model.editSprings();
+    springs.push_back(springs[30]);
+    springs.erase(springs.begin() + 40);
   });
   EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after duplicating one spring and removing another";
 
   // Every spring's k, L0 and kd changed in place (what the panel's sliders do): the force pass
   // works from copies, which the edit must refresh.
   cloth->editModel([&](Simulation& model) {
-    for (Spring& s : model.springs) {
+    for (Spring& s : model.editSprings()) {
       s.springConstant *= 3.0;
       s.springLength *= 0.9;
       s.frictionConstant *= 2.0;
@@ -125,37 +132,15 @@ TEST(NetForcePass, FollowsSpringsEditedThroughEditModel) {
   EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after changing every spring's k, L0 and kd";
 }
 
-TEST(NetForcePass, FollowsASpringListReplacedOrResizedWithoutEditModel) {
-  // A new list (new storage) or one of another length is sorted again at the next pass.
+TEST(NetForcePass, FollowsAListReplacedByOneWithNoFamilyThroughThePlainLoop) {
+  // Twenty springs of a 576-mass cloth share no offset often enough for a family: the fast
+  // pass declines and net.cpp's plain loop adds them; back to the whole grid, the fast pass again.
   std::unique_ptr<net::Net> cloth = randomCloth(8);
-  ASSERT_LE(largestRelativeDifference(*cloth), 1e-12);
-  std::vector<Spring> copy = cloth->springs;
-  std::reverse(copy.begin(), copy.end());
-  cloth->springs = std::move(copy);
-  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after replacing the list with a reversed copy";
-  cloth->springs.pop_back();
-  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after removing the last spring";
-}
-
-TEST(NetForcePass, SaysWhenASpringIsChangedInPlaceWithoutEditModel) {
-  // k changed behind editModel's back: the force pass's copy is stale. Within kCheckPasses
-  // passes it must say so, naming the spring and editModel, not go on with the old k.
-  std::unique_ptr<net::Net> cloth = randomCloth(9);
-  cloth->evaluateForces(cloth->state, cloth->force);
-  const std::size_t edited = cloth->springs.size() / 2;
-  cloth->springs[edited].springConstant *= 2.0;
-  std::string message;
-  int passes = 0;
-  for (; passes < SpringFamilies::kCheckPasses + 1 && message.empty(); ++passes) {
-    try {
-      cloth->evaluateForces(cloth->state, cloth->force);
-    } catch (const std::logic_error& e) {
-      message = e.what();
-    }
-  }
-  ASSERT_FALSE(message.empty()) << "a spring changed in place went unnoticed for " << passes << " force passes";
-  EXPECT_NE(message.find("springs[" + std::to_string(edited) + "]"), std::string::npos) << message;
-  EXPECT_NE(message.find("editModel"), std::string::npos) << message;
+  const std::vector<Spring> all = cloth->springs();
+  cloth->editModel([&](Simulation& model) { model.editSprings().resize(20); });
+  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after keeping 20 springs (no family)";
+  cloth->editModel([&](Simulation& model) { model.editSprings() = all; });
+  EXPECT_LE(largestRelativeDifference(*cloth), 1e-12) << "after restoring the whole grid";
 }
 
 TEST(SpringFamilies, Avx2AndBaselineLoopsGiveTheSameBits) {
@@ -179,11 +164,11 @@ TEST(SpringFamilies, Avx2AndBaselineLoopsGiveTheSameBits) {
 TEST(SpringFamilies, SortAGridIntoItsSixOffsetsAndTakeEverySpringOnce) {
   std::unique_ptr<net::Net> cloth = randomCloth(3);
   const int n = static_cast<int>(cloth->masses.size());
-  const SpringFamilies families(cloth->springs, n);
+  const SpringFamilies families(cloth->springs(), n);
   // Structural (1, 24), shear (23, 25), bend (2, 48) on a 24-wide grid.
   EXPECT_EQ(families.families(), 6);
   EXPECT_TRUE(families.leftovers().empty());
-  std::vector<int> seen(cloth->springs.size(), 0);
+  std::vector<int> seen(cloth->springs().size(), 0);
   for (const int k : families.order()) ++seen[static_cast<std::size_t>(k)];
   for (const int k : families.leftovers()) ++seen[static_cast<std::size_t>(k)];
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(seen.size())) << "a spring is missing or twice";
@@ -191,7 +176,7 @@ TEST(SpringFamilies, SortAGridIntoItsSixOffsetsAndTakeEverySpringOnce) {
   for (const SpringFamilies::Run& run : families.runs()) {
     for (int t = 0; t < run.count; ++t) {
       const int k = families.order()[static_cast<std::size_t>(run.spring + t)];
-      const Spring& s = cloth->springs[static_cast<std::size_t>(k)];
+      const Spring& s = cloth->springs()[static_cast<std::size_t>(k)];
       ASSERT_EQ(s.mass1, run.first + t);
       ASSERT_EQ(s.mass2, run.first + t + families.offset(run.family));
     }

@@ -1,5 +1,5 @@
 // Two threads give the same cloth as one, bit for bit: the parallel loops split work so that
-// every sum runs in the same order whatever the thread count (springlab/spring_batches.hpp).
+// every sum runs in the same order whatever the thread count (framework/src/fast/spring_batches.hpp).
 #include <gtest/gtest.h>
 
 #include <memory>

@@ -5,7 +5,7 @@
 #include <random>
 #include <set>
 
-#include <springlab/spring_batches.hpp>
+#include "fast/spring_batches.hpp"
 
 #include <springlab/net/net.hpp>
 

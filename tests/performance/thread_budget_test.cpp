@@ -15,7 +15,7 @@
 #include <omp.h>
 #endif
 
-#include <springlab/thread_budget.hpp>
+#include "fast/thread_budget.hpp"
 
 namespace springlab {
 namespace {

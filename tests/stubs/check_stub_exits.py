@@ -19,10 +19,6 @@ import re
 import subprocess
 import sys
 
-# The scene a lab runs by default (as ./springlab run labN).
-DEFAULT_SCENES = {"01_rope": "rope.json", "02_net": "net_hanging.json", "03_softbody": "softbody_ball.json"}
-
-
 def describe(code):
     return f"signal {-code}" if code < 0 else f"exit code {code}"
 
@@ -79,7 +75,8 @@ def main():
     problems = []
     for exercise in ids:
         run = exercises[exercise].get("run", {})
-        scene = str(args.scenes / run.get("scene", DEFAULT_SCENES[manifest["lab"]]))
+        # The exercise's own scene, else the lab's (the one `./springlab run LAB` opens).
+        scene = str(args.scenes / run.get("scene", manifest["scene"]))
         options = ["--integrator", run["integrator"]] if "integrator" in run else []
         steps = str(run.get("steps", 240))
         sim = [args.program, "sim", scene, "--steps", steps, "--save-every", steps,

@@ -7,6 +7,7 @@ python3-matplotlib is installed), and advise prints a JSON snippet that loads as
 """
 import csv
 import json
+import re
 import pathlib
 import shutil
 import subprocess
@@ -82,6 +83,15 @@ try:
     run(app, "sim", str(pasted), "--steps", "100", "--out", str(out / "advised_run.json"))
 except json.JSONDecodeError:
     failures.append(f"advise: stdout is not JSON:\n{p.stdout}")
+# ... and says on stderr what it does: a progress line per run (which, how many left, the time
+# left), the tolerance asked for and its two halves, and a table whose columns do not run
+# together ("implicit_euler_blocksdt = ...").
+if not re.search(r"^advise: run 1 of at most \d+ \(.+\) done after \d+ s; \d+ left, about \d+ s", p.stderr, re.M):
+    failures.append(f"advise: no progress lines on stderr:\n{p.stderr}")
+if "--tol 0.2: " not in p.stderr or "within 0.2 (relative)" not in p.stderr or "0.1 for the resolution" not in p.stderr:
+    failures.append(f"advise: the tolerance asked for (0.2) and its halves are not said:\n{p.stderr}")
+if re.search(r"[a-z]dt = ", p.stderr):
+    failures.append(f"advise: a column runs into the next:\n{p.stderr}")
 
 # An unknown observable is a clear error (exit 2) naming the ones the scene has.
 p = subprocess.run([app, "chart", "resolution", str(rope), "--observable", "volume", "--out", str(out / "bad")],

@@ -1,6 +1,6 @@
 // XPBD and projective dynamics (Lab 2's given loops) on the rope and the soft body: they take a
 // scene's springs and treat every other force, the soft body's gas pressure included, as an
-// external force taken once per step (see handouts/02_net.md section 7.5). The physics must hold
+// external force taken once per step (see handouts/02_net.md, section 7.c). The physics must hold
 // there as on the cloth: momentum kept without external forces, stable at dt = 1/60 s, and a
 // rest state where the force model's forces balance.
 #include <gtest/gtest.h>

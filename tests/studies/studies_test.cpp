@@ -96,7 +96,7 @@ TEST(NetPanel, StiffnessSliderRetunesOnlyItsKindOfSpring) {
   LoadedScene flag = allLabs().loadScene(shippedScene("net_flag.json"));
   Simulation& sim = *flag.sim;
   std::vector<double> shearBefore;
-  for (const Spring& s : sim.springs) {
+  for (const Spring& s : sim.springs()) {
     if (s.kind == SpringKind::Shear) shearBefore.push_back(s.springConstant);
   }
   const Parameter structural = slider(sim, "structural stiffness");
@@ -104,7 +104,7 @@ TEST(NetPanel, StiffnessSliderRetunesOnlyItsKindOfSpring) {
   structural.set(123.0);
   EXPECT_EQ(structural.get(), 123.0) << "the slider reads back what it wrote";
   std::vector<double> shearAfter;
-  for (const Spring& s : sim.springs) {
+  for (const Spring& s : sim.springs()) {
     if (s.kind == SpringKind::Structural) {
       EXPECT_EQ(s.springConstant, 123.0) << "every structural spring takes the new k";
     }

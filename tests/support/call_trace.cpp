@@ -101,13 +101,21 @@ Reader& Reader::instance() {
 
 void Reader::bytes(void* data, std::size_t size) {
   auto* p = static_cast<unsigned char*>(data);
+  if (size > remaining()) malformed("more than " + std::to_string(kMaxTraceBytes >> 20) + " MiB in one test");
+  consumed_ += size;
   while (size > 0) {
     if (begin_ == end_) {
       if (fd_ < 0) throw TraceEnded("no call trace: SPRINGLAB_CALL_TRACE_FD is not set");
       ssize_t n;
       do n = ::read(fd_, buffer_.data(), buffer_.size());
       while (n < 0 && errno == EINTR);
-      if (n <= 0) throw TraceEnded("the student's code stopped before this call returned");
+      if (n <= 0) {
+        // Cut short inside a record: the test fails here, even if it catches every exception.
+        if (!function_.empty())
+          ADD_FAILURE() << "SPRINGLAB_TRACE_ENDED: your code stopped while giving back what its call of "
+                        << function_ << " (call " << calls_ << " to your exercise file in this test) returned";
+        throw TraceEnded("the student's code stopped before this call returned");
+      }
       begin_ = 0, end_ = static_cast<std::size_t>(n);
     }
     const std::size_t take = std::min(size, end_ - begin_);
@@ -119,8 +127,24 @@ void Reader::bytes(void* data, std::size_t size) {
 std::size_t getSize(Reader& r) {
   std::uint64_t n = 0;
   get(r, n);
-  if (n > kMaxElements) throw std::length_error("call trace: a vector of " + std::to_string(n) + " elements");
+  // Every element takes at least a byte of the trace: a count above what it can still hold is a lie.
+  if (n > kMaxElements || n > r.remaining())
+    malformed("a vector of " + std::to_string(n) + " elements");
   return static_cast<std::size_t>(n);
+}
+
+void malformed(const std::string& what) {
+  const Reader& r = Reader::instance();
+  ADD_FAILURE() << "the grader cannot use what your code gave back from call " << r.calls() << " to your exercise file"
+                << (r.function().empty() ? std::string() : " (" + r.function() + ")") << ": " << what
+                << ". The test fails (a malformed call record: only the grading program writes those)";
+  throw MalformedTrace(what);
+}
+
+void checkIndex(std::size_t points, long long index, const char* what) {
+  if (index < 0 || static_cast<std::size_t>(index) >= points)
+    malformed(std::string(what) + " is " + std::to_string(index) + ", but the call has " + std::to_string(points) +
+              " masses");
 }
 
 void replayCall(std::uint32_t function, const char* name) {
@@ -128,6 +152,7 @@ void replayCall(std::uint32_t function, const char* name) {
   const std::size_t call = r.calls() + 1;
   std::uint32_t recorded = 0;
   std::uint8_t outcome = 0;
+  r.reading("");
   try {
     get(r, recorded);
     get(r, outcome);
@@ -144,10 +169,12 @@ void replayCall(std::uint32_t function, const char* name) {
                   << " (random numbers, uninitialised values, or state kept between calls?)";
     throw TraceEnded("the test took another path in the student's run");
   }
+  r.reading(name);
+  if (outcome > static_cast<std::uint8_t>(Outcome::Unknown)) malformed("an outcome that is no outcome");
   if (outcome == 0) return;
   const std::size_t size = getSize(r);
-  std::string message(std::min(size, kMaxMessage), '\0');
-  if (size > kMaxMessage) throw std::length_error("call trace: exception message too long");
+  if (size > kMaxMessage) malformed("an exception message of " + std::to_string(size) + " bytes");
+  std::string message(size, '\0');
   r.bytes(message.data(), message.size());
   switch (static_cast<Outcome>(outcome)) {
     case Outcome::NotImplemented: {

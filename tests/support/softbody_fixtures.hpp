@@ -26,6 +26,9 @@ inline softbody::SoftBodyParameters quietBody(SurfaceMesh mesh, double totalMass
   return p;
 }
 
+// The contact tests' material: stiffness 2000 N/m, damping 5 N s/m, friction 0.5, no bounce.
+inline const softbody::ContactMaterial kMaterial{2000.0, 5.0, 0.5, 0.0};
+
 // A horizontal floor y = height facing up.
 inline softbody::Obstacle floorAt(double height) {
   softbody::Obstacle o;
@@ -52,6 +55,27 @@ std::vector<Vec3> randomVelocities(size_t n, double speed, Rng& rng) {
   std::vector<Vec3> v(n);
   for (Vec3& x : v) x = Vec3(u(rng), u(rng), u(rng));
   return v;
+}
+
+// A 1 kg ball of radius 0.5 m (162 masses) just above a floor, under gravity.
+inline softbody::SoftBodyParameters ballAboveTheFloor(double nRT, softbody::ContactMethod method) {
+  softbody::SoftBodyParameters p = quietBody(icosphere(0.5, 2), 1.0, 100.0, 1.0);
+  for (Vec3& v : p.mesh.vertices) v += Vec3(0, 0.55, 0);
+  p.gas = nRT;
+  p.inflationTime = 0.1;  // s: 200 steps of 0.5 ms
+  p.gravitation = Vec3(0, -9.81, 0);
+  p.airFriction = 0.005;
+  p.contactMethod = method;
+  p.contact = {2000.0, 5.0, 0.5, 0.0};
+  p.obstacles.push_back(floorAt(0.0));
+  return p;
+}
+
+// Run the body for `seconds` with steps of dt; its volume then, over its rest volume.
+inline double run(softbody::SoftBody& body, double seconds, double dt) {
+  const int steps = static_cast<int>(std::lround(seconds / dt));
+  for (int i = 0; i < steps; ++i) body.operate(dt);
+  return body.volume(body.state) / body.restVolume();
 }
 
 // A registry with the framework's integrators and this lab's scene kind.

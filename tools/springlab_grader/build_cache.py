@@ -15,10 +15,12 @@ import subprocess
 import threading
 
 from .errors import GradeError
-from .gtest_runner import budget_seconds, grade_binary, listed_tests
+from .gtest_runner import grade_binary, listed_tests
 from .integrity import defined_symbols
 from .labs import ROOT
 from .sandbox import tail
+from .sealed_compile import sealed_compiler
+from .staging import stage
 
 
 # ---- the link CMake writes -------------------------------------------------------------------
@@ -136,6 +138,7 @@ class LabBuild:
     tests_present: set
     oracle_symbols: set     # strong symbols the reference "oracle" defines
     protected_symbols: set  # strong symbols of the framework, GoogleTest and the grading main
+    sealed: object = None   # the compile as its sandbox runs it (sealed_compile.SealedCompiler)
 
     @property
     def given_objects(self):
@@ -185,12 +188,19 @@ def include_digest(flags):
 
 class ObjectCache:
     """Compiled exercise files (object and dependency file) of earlier submissions, in a folder
-    only the grader can open, keyed by the flags, the file's name and bytes and the headers."""
+    only the grader can open, keyed by the flags, the file's name and bytes and the headers.
+    Bounded: an object above OBJECT_LIMIT bytes is never kept, and once the folder holds more
+    than `cap` bytes the entries used longest ago go (each use touches its entry)."""
 
-    def __init__(self, folder):
+    OBJECT_LIMIT = 32 << 20   # the compiler's own output limit (sealed_compile.OUTPUT_MB)
+    CAP = 2 << 30              # the folder's size
+
+    def __init__(self, folder, cap=CAP):
         self.folder = pathlib.Path(folder)
         self.folder.mkdir(exist_ok=True)
         os.chmod(self.folder, 0o700)
+        self.cap = cap
+        self.lock = threading.Lock()
 
     @staticmethod
     def key(flags, name, data, headers):
@@ -205,14 +215,21 @@ class ObjectCache:
         cached, deps, digest = (self.folder / f"{key}{suffix}" for suffix in (".o", ".d", ".sha256"))
         if not (cached.exists() and deps.exists() and digest.exists()):
             return None
-        shutil.copyfile(cached, into / f"{name}.o")
-        shutil.copyfile(deps, into / f"{name}.d")
-        if entry_digest(into / f"{name}.o", into / f"{name}.d") != digest.read_text().strip():
+        try:
+            shutil.copyfile(cached, into / f"{name}.o")
+            shutil.copyfile(deps, into / f"{name}.d")
+            if entry_digest(into / f"{name}.o", into / f"{name}.d") != digest.read_text().strip():
+                return None
+            os.utime(digest)  # used now: the last to be evicted
+        except FileNotFoundError:  # evicted by a grader beside this one meanwhile
             return None
         return into / f"{name}.o"
 
     def store(self, key, obj, deps):
-        """Keep a compile the grader has copied out of the sandbox's reach, with its digest."""
+        """Keep a compile the grader has copied out of the sandbox's reach, with its digest;
+        nothing when the object is above OBJECT_LIMIT."""
+        if pathlib.Path(obj).stat().st_size + pathlib.Path(deps).stat().st_size > self.OBJECT_LIMIT:
+            return
         for source, target in ((obj, self.folder / f"{key}.o"), (deps, self.folder / f"{key}.d")):
             temporary = target.with_name(f"{target.name}.{os.getpid()}.{threading.get_ident()}")
             shutil.copyfile(source, temporary)
@@ -221,6 +238,30 @@ class ObjectCache:
         temporary = digest.with_name(f"{digest.name}.{os.getpid()}.{threading.get_ident()}")
         temporary.write_text(entry_digest(obj, deps) + "\n")
         os.replace(temporary, digest)
+        self.evict()
+
+    def evict(self):
+        """Remove the entries used longest ago until the folder holds at most 3/4 of the cap,
+        once it holds more than the cap."""
+        with self.lock:
+            entries = {}
+            for path in self.folder.iterdir():
+                key = path.name.split(".", 1)[0]
+                try:
+                    stat = path.stat()
+                except FileNotFoundError:
+                    continue
+                size, used = entries.get(key, (0, 0.0))
+                entries[key] = (size + stat.st_size, max(used, stat.st_mtime) if path.suffix == ".sha256" else used)
+            total = sum(size for size, _ in entries.values())
+            if total <= self.cap:
+                return
+            for key, (size, _) in sorted(entries.items(), key=lambda item: item[1][1]):
+                if total <= self.cap * 3 // 4:
+                    break
+                for suffix in (".o", ".d", ".sha256"):
+                    (self.folder / f"{key}{suffix}").unlink(missing_ok=True)
+                total -= size
 
 
 def entry_digest(obj, deps):
@@ -271,7 +312,7 @@ class Cache:
                              + tail(run.stdout + run.stderr, 40))
 
     # How the reference's times were counted (a record counted otherwise is measured again).
-    COUNTED = "wall time over the machine's slowdown (gtest_runner.budget_seconds)"
+    COUNTED = "CPU seconds of the test's processes, inside bubblewrap too (sandbox.reap, judged_run.Launch)"
 
     def reference_times(self, lab, sandbox):
         """The reference's own grading time for a lab ({test: seconds}), measured once on the
@@ -292,10 +333,11 @@ class Cache:
                     return {str(k): float(v) for k, v in per_test.items()}
             except (OSError, ValueError):
                 pass
-            # Launched as the workers are (gtest_runner.run_test), so the times compare.
-            results = grade_binary(program, lab.manifest, 1, sandbox, 1, seccomp=link.worker_seccomp)
-            # Counted as budgets count a student's tests: wall time over the machine's load.
-            per_test = {r.test["name"]: budget_seconds(r.seconds) for r in results}
+            # Launched as the workers are (gtest_runner.run_test), so the times compare; from
+            # the stage, which the sandbox users can reach wherever the checkout lives.
+            results = grade_binary(str(stage().program(program)), lab.manifest, 1, sandbox, 1, seccomp=link.worker_seccomp)
+            # Counted as budgets count a student's tests: CPU time, which load does not stretch.
+            per_test = {r.test["name"]: r.cpu_seconds for r in results}
             temporary = record.with_name(f"{record.name}.{os.getpid()}")
             temporary.write_text(json.dumps({"program_sha256": digest, "counted": self.COUNTED, "seconds": sum(per_test.values()),
                                              "per_test": per_test,
@@ -322,6 +364,9 @@ class Cache:
                        and f != link.oracle)]
         if not os.access(link.skeleton_program, os.X_OK):
             raise GradeError(f"{link.skeleton_program}: missing; was {lab.name}_grading_student built?")
-        present = set(listed_tests(link.skeleton_program, sandbox))
+        present = set(listed_tests(str(stage().program(link.skeleton_program)), sandbox))
+        for judge in link.judges.values():  # staged now, before graders run side by side
+            stage().program(judge)
+        from .judged_run import bubblewrap
         return LabBuild(flags, link, present, defined_symbols([link.oracle]) if link.oracle else set(),
-                        defined_symbols(protected))
+                        defined_symbols(protected), sealed_compiler(flags, ROOT, bubblewrap() is not None))

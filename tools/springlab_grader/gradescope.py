@@ -18,9 +18,11 @@ chmod +x "$SRC/springlab"
 # compiles only its own lab files.
 # (With --lab, that lab's only: one Gradescope assignment per lab.)
 python3 "$SRC/tools/submission.py" prepare @LAB_ARGS@
-# Student code runs in bubblewrap and sees none of this tree; where namespaces are not
-# allowed it runs as its own user: keep the reference and the hidden tests out of its reach.
-chmod -R go-rwx "$SRC/solutions" "$SRC"/tests/*/hidden "$SRC/tests/grading"
+# Student code and the compiler run in bubblewrap and see none of this tree; where namespaces
+# are not allowed they run as users of their own. Nothing of the tree (the reference, the
+# hidden tests, build-grader/ with its objects) is theirs to read: what the sandbox needs is
+# staged by the grader (tools/springlab_grader/staging.py).
+chmod -R go-rwx "$SRC"
 """
 
 RUN = r"""#!/usr/bin/env bash

@@ -10,14 +10,14 @@ import concurrent.futures
 import dataclasses
 import json
 import os
-import pathlib
 import random
 import re
-import signal
 import tempfile
 import threading
 import time
 
+from .failures import clean, crash_signal, signal_name
+from .judged_run import kill_user, launch_worker, outcome_of, read_tail, run_judged, wait_until, worker_uid
 from .manifest import ManifestError
 from .results import TestResult
 from .sandbox import read_until_closed, run_sandboxed, tail
@@ -28,12 +28,12 @@ class Outcome:
     passed: bool
     message: str
     seconds: float
+    cpu_seconds: float = 0.0  # what the test costs a budget (sandbox.reap)
 
 
 def run_test(binary, name, seed, sandbox, slot=0, seccomp=None):
     """Run one GoogleTest test alone, launched as a worker is; trust only the report on the
     channel (one JSON object, written after the test returned)."""
-    from .judged_run import crash_signal, launch_worker, read_tail, wait_until
     start = time.monotonic()
     with tempfile.TemporaryFile() as log:
         launch = launch_worker(binary, name, sandbox, {"SPRINGLAB_SEED": str(seed)}, log, slot=slot, seccomp=seccomp)
@@ -41,9 +41,17 @@ def run_test(binary, name, seed, sandbox, slot=0, seccomp=None):
         channel = read_until_closed(launch.channel, deadline)
         os.close(launch.channel)
         code = wait_until(launch.proc, deadline)
-        launch.finish()
+        cpu = launch.finish() if code is not None else max(launch.finish(), sandbox.timeout)
         seconds = time.monotonic() - start
         output = read_tail(log)
+    outcome = outcome_of_test(name, sandbox, code, channel, output, seconds)
+    outcome.cpu_seconds = cpu
+    return outcome
+
+
+def outcome_of_test(name, sandbox, code, channel, output, seconds):
+    """The Outcome of one test process from its exit code and the report on its channel."""
+    from .judged_run import crash_signal
     try:
         report = json.loads(channel.decode("utf-8", "replace")) if channel.strip() else None
     except ValueError:
@@ -51,7 +59,7 @@ def run_test(binary, name, seed, sandbox, slot=0, seccomp=None):
     if code is None:
         return Outcome(False, f"timed out after {sandbox.timeout:g} s: an infinite loop, or far too much work", seconds)
     if crash_signal(code) is not None:
-        return Outcome(False, f"crashed: {signal_name(crash_signal(code))}\n{tail(output)}", seconds)
+        return Outcome(False, f"crashed: {signal_name(crash_signal(code), output)}\n{tail(output)}", seconds)
     if not isinstance(report, dict):
         return Outcome(False, f"the test process ended (exit code {code}) without the grader's report: "
                               f"exit() or a crash inside the code under test\n{tail(output)}", seconds)
@@ -66,26 +74,6 @@ def run_test(binary, name, seed, sandbox, slot=0, seccomp=None):
     if status == "skipped":
         return Outcome(False, "skipped: a skipped test earns no points", seconds)
     return Outcome(False, f"the test passed but its process then exited with code {code}", seconds)
-
-
-def signal_name(number):
-    names = {signal.SIGSEGV: "segmentation fault (SIGSEGV): an invalid memory access, or a stack overflow from "
-                             "too deep a recursion",
-             signal.SIGABRT: "aborted (SIGABRT): abort(), a failed assert, or an exception nobody caught",
-             signal.SIGFPE: "arithmetic error (SIGFPE), e.g. an integer division by zero",
-             signal.SIGKILL: "killed (SIGKILL): the memory or CPU time limit",
-             signal.SIGXCPU: "CPU time limit exceeded (SIGXCPU)",
-             signal.SIGXFSZ: "wrote more output than allowed (SIGXFSZ)",
-             signal.SIGBUS: "bus error (SIGBUS): an invalid memory access"}
-    return names.get(number, f"signal {number}")
-
-
-def clean(failure):
-    # Drop the source location line GoogleTest puts first; students want the physics.
-    lines = failure.splitlines()
-    if lines and re.match(r"^\S+:\d+$", lines[0]):
-        lines = lines[1:]
-    return "\n".join(lines)
 
 
 # GoogleTest's own lines that print compared values; in a hidden test those may be the
@@ -126,40 +114,19 @@ def listed_tests(binary, sandbox):
     return names
 
 
-# A loaded machine (a class graded two at a time beside other work) stretches every test's
-# wall time; budgets count a test's wall time divided by the machine's slowdown, so an honest
-# submission is not cut off because the grader shares its cores. At most this factor, so code
-# that loads the machine itself buys a bounded discount.
-MAX_SLOWDOWN = 8.0
-
-
-def machine_slowdown(loadavg="/proc/loadavg", cores=None):
-    """How many times slower than alone a CPU-bound test runs now: the larger of the 1-minute
-    load average and the tasks runnable this instant (besides the reader), per core; between 1
-    and MAX_SLOWDOWN. 1 where the load cannot be read (not Linux)."""
-    try:
-        fields = pathlib.Path(loadavg).read_text().split()
-        load, runnable = float(fields[0]), int(fields[3].split("/")[0]) - 1
-    except (OSError, ValueError, IndexError):
-        return 1.0
-    per_core = max(load, runnable) / (cores or os.cpu_count() or 1)
-    return min(MAX_SLOWDOWN, max(1.0, per_core))
-
-
-def budget_seconds(wall, slowdown=None):
-    """What a test's wall time counts in a budget (and in the reference's own time): the wall
-    time over the machine's slowdown when it ended."""
-    return wall / (machine_slowdown() if slowdown is None else slowdown)
-
-
 class Budget:
-    """Seconds of test time a submission or a lab may spend (the sum of its tests' run times,
-    each over the machine's slowdown when it ran: budget_seconds; checked before each test
-    starts); None as the limit means no budget. Budgets nest: a lab's spending counts against
-    its submission's too."""
+    """CPU seconds a submission or a lab may spend on its tests (the sum of its tests' CPU time,
+    worker and judge: sandbox.reap; a test stopped at the time limit costs the limit), and a
+    wall-time limit on the whole (`wall`, seconds from its creation), which a test that waits
+    without computing (sleep, a blocked read) spends instead; both checked before each test
+    starts. None as a limit means none. Budgets nest: a lab's spending counts against its
+    submission's too. CPU time is not stretched by a loaded machine, so an honest submission is
+    not cut off because the grader shares its cores; the wall limit is far above what any honest
+    lab takes and bounds what a hostile one costs a grading slot."""
 
-    def __init__(self, limit, parent=None, what="lab"):
-        self.limit, self.parent, self.what = limit, parent, what
+    def __init__(self, limit, parent=None, what="lab", wall=None):
+        self.limit, self.parent, self.what, self.wall = limit, parent, what, wall
+        self.started = time.monotonic()
         self.spent = 0.0
         self.lock = threading.Lock()
 
@@ -167,7 +134,29 @@ class Budget:
         """The budget that is spent (this one or an enclosing one), or None."""
         if self.limit is not None and self.spent >= self.limit:
             return self
+        if self.wall is not None and time.monotonic() - self.started >= self.wall:
+            return self
         return self.parent.exhausted() if self.parent else None
+
+    def wall_left(self):
+        """Seconds until the nearest wall-time limit (this budget's or an enclosing one's); None: none."""
+        own = None if self.wall is None else self.wall - (time.monotonic() - self.started)
+        outer = self.parent.wall_left() if self.parent else None
+        return min((x for x in (own, outer) if x is not None), default=None)
+
+    def limited(self, sandbox):
+        """The sandbox of a test started now: its time limit cut to the wall time left, so no
+        test runs past the limit. (sandbox, True when cut)."""
+        left = self.wall_left()
+        if left is None or left >= sandbox.timeout:
+            return sandbox, False
+        return dataclasses.replace(sandbox, timeout=max(0.1, left), cpu_seconds=sandbox.timeout + 2), True
+
+    def past_wall_limit(self):
+        """The budget (this one or an enclosing one) whose wall-time limit has passed, or None."""
+        if self.wall is not None and time.monotonic() - self.started >= self.wall:
+            return self
+        return self.parent.past_wall_limit() if self.parent else None
 
     def spend(self, seconds):
         with self.lock:
@@ -176,9 +165,12 @@ class Budget:
             self.parent.spend(seconds)
 
     def message(self):
-        return (f"time budget spent: this {self.what}'s tests had already run {self.spent:.0f} s, more than "
-                f"its budget of {self.limit:.0f} s (a multiple of the reference solution's own time; both "
-                f"counted as wall time over the machine's load), so this test was not run")
+        if self.limit is not None and self.spent >= self.limit:
+            return (f"time budget spent: this {self.what}'s tests had already used {self.spent:.0f} s of CPU time, "
+                    f"more than its budget of {self.limit:.0f} s (a multiple of the reference solution's own CPU "
+                    f"time), so this test was not run")
+        return (f"wall-time limit reached: this {self.what}'s tests had already run for {self.wall:.0f} s (its limit: "
+                f"tests that wait, such as sleep, cost wall time without CPU time), so this test was not run")
 
 
 @dataclasses.dataclass
@@ -218,11 +210,15 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
         elif spent is not None:
             outcome = Outcome(False, spent.message(), 0.0)
         else:
-            outcome = run_test(binary, t["name"], seed, sandbox, slot=slot, seccomp=seccomp)
+            limited, cut = budget.limited(sandbox) if budget else (sandbox, False)
+            outcome = run_test(binary, t["name"], seed, limited, slot=slot, seccomp=seccomp)
             if budget:
-                budget.spend(budget_seconds(outcome.seconds))
+                budget.spend(outcome.cpu_seconds)
+                if cut and budget.past_wall_limit():
+                    outcome.message = budget.past_wall_limit().message().replace(", so this test was not run",
+                                                                                 ": this test was stopped there")
         message = redact(outcome.message) if t["visibility"] != "visible" and outcome.message else outcome.message
-        result = TestResult(ex, t, outcome.passed, message, outcome.seconds)
+        result = TestResult(ex, t, outcome.passed, message, outcome.seconds, outcome.cpu_seconds)
         if on_result:
             on_result(result)
         return result
@@ -230,7 +226,6 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         results = list(pool.map(one, todo))
     if todo and os.geteuid() == 0:
-        from .judged_run import kill_user, worker_uid
         kill_user(worker_uid(slot))
     return results
 
@@ -238,7 +233,6 @@ def grade_binary(binary, manifest, seed, sandbox, jobs, present=None, on_result=
 def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget=None, slot=0, seccomp=None):
     """Run the manifest's tests `only` as judge and worker pairs (judged_run.py); results in
     manifest order. The judge holds every test of the lab (hidden ones too)."""
-    from .judged_run import kill_user, outcome_of, run_judged, worker_uid
     todo = [(ex, t) for ex in manifest["exercises"] for t in ex["tests"] if only is None or t["name"] in only]
 
     def one(item):
@@ -247,14 +241,18 @@ def grade_judged(judge, worker, manifest, seed, sandbox, jobs, only=None, budget
         if spent is not None:
             outcome = Outcome(False, spent.message(), 0.0)
         else:
-            run = run_judged(judge, worker, t["name"], sandbox,
+            limited, cut = budget.limited(sandbox) if budget else (sandbox, False)
+            run = run_judged(judge, worker, t["name"], limited,
                              {"SPRINGLAB_SEED": str(seed)}, slot=slot, seccomp=seccomp)
-            passed, message = outcome_of(run, t["name"], sandbox.timeout)
-            outcome = Outcome(passed, message, run.seconds)
+            passed, message = outcome_of(run, t["name"], limited.timeout)
+            outcome = Outcome(passed, message, run.seconds, run.cpu_seconds)
             if budget:
-                budget.spend(budget_seconds(outcome.seconds))
+                budget.spend(outcome.cpu_seconds)
+                if cut and not passed and budget.past_wall_limit():
+                    outcome.message = budget.past_wall_limit().message().replace(", so this test was not run",
+                                                                                 ": this test was stopped there")
         message = redact(outcome.message) if t["visibility"] != "visible" and outcome.message else outcome.message
-        return TestResult(ex, t, outcome.passed, message, outcome.seconds)
+        return TestResult(ex, t, outcome.passed, message, outcome.seconds, outcome.cpu_seconds)
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         results = list(pool.map(one, todo))

@@ -5,81 +5,10 @@ symbols, or calls what an exercise never needs to (the test framework, files, th
 other processes) is graded as the released skeleton's file, and the report says why."""
 import pathlib
 import re
-import subprocess
 
+from .call_check import (FORBIDDEN_CALLS, REPLACED, defined_symbols, demangle, forbidden_call_reason,  # noqa: F401
+                         forbidden_calls, replaced_note, symbols_by_file, undefined_symbols)
 from .labs import exercises_in
-
-
-def defined_symbols(files):
-    """Global symbols the files define strongly (weak ones, inline functions, may repeat)."""
-    files = [str(f) for f in files if f]
-    if not files:
-        return set()
-    run = subprocess.run(["nm", "-g", "--defined-only", "-P", *files], capture_output=True, text=True)
-    return {parts[0] for parts in (line.split() for line in run.stdout.splitlines())
-            if len(parts) >= 2 and parts[1] in "TDBRG" and not parts[0].endswith(":")}
-
-
-def symbols_by_file(files, undefined=False):
-    """{file: its strongly defined (or its undefined) global symbols}, one nm for all files."""
-    files = [str(f) for f in files]
-    found = {f: set() for f in files}
-    if not files:
-        return found
-    argv = ["nm", "-A", "-P", *(["-u"] if undefined else ["-g", "--defined-only"]), *files]
-    run = subprocess.run(argv, capture_output=True, text=True)
-    for line in run.stdout.splitlines():
-        where, _, rest = line.partition(": ")
-        parts = rest.split()
-        if where in found and parts and (undefined or (len(parts) >= 2 and parts[1] in "TDBRG")):
-            found[where].add(parts[0])
-    return found
-
-
-# What exercise code never needs, and hostile code would use to learn which test runs or that
-# it is graded (the test framework's state, the command line and environment, the grading
-# tree's files) or to reach beyond its process. Matched against the undefined symbols of the
-# student's object: the calls it makes. Code that reads its own memory without calling
-# anything is out of reach of this check (the README's limits).
-FORBIDDEN_CALLS = [
-    (re.compile(r"^_ZN?K?7testing"), "the test framework (GoogleTest)"),
-    (re.compile(r"^(getenv|secure_getenv|environ|__environ|__libc_argv|program_invocation(_short)?_name)$"),
-     "the environment or command line"),
-    (re.compile(r"^(open|open64|openat|openat64|__open_2|__open64_2|__openat_2|creat|creat64|fopen|fopen64|"
-                r"freopen|freopen64|opendir|fdopendir|readlink|readlinkat|stat|stat64|lstat|__xstat|__xstat64|"
-                r"access|faccessat|dlopen|dlmopen|dlsym|dlvsym|dladdr|dladdr1|dlinfo|dl_iterate_phdr)$"),
-     "files or loaded programs"),
-    (re.compile(r"^_ZNSt(7__cxx11)?1[34]basic_[io]?fstream|^_ZNSt(7__cxx11)?10filesystem|"
-                r"^_ZNSt(7__cxx11)?1[34]basic_filebuf"), "files (std::fstream, std::filesystem)"),
-    (re.compile(r"^(backtrace|backtrace_symbols|backtrace_symbols_fd|_Unwind_Backtrace|_Unwind_GetIP)$"),
-     "its own call stack"),
-    (re.compile(r"^(syscall|ptrace|process_vm_readv|process_vm_writev|prctl|fork|vfork|clone|clone3|execv|execve|"
-                r"execvp|execvpe|execl|execle|execlp|fexecve|system|popen|posix_spawn|posix_spawnp|kill|killpg|"
-                r"socket|connect|bind|mprotect|setuid|setgid|setsid|setpgid|daemon)$"),
-     "other processes or the operating system"),
-]
-
-
-def forbidden_calls(undefined):
-    """[(symbol, what it reaches)] among an object's undefined symbols (`nm -u`)."""
-    found = []
-    for symbol in sorted(undefined):
-        bare = symbol.split("@")[0]
-        for pattern, what in FORBIDDEN_CALLS:
-            if pattern.search(bare):
-                found.append((bare, what))
-                break
-    return found
-
-
-def undefined_symbols(obj):
-    run = subprocess.run(["nm", "-u", "-P", str(obj)], capture_output=True, text=True)
-    return {line.split()[0] for line in run.stdout.splitlines() if line.strip()}
-
-
-def demangle(symbols):
-    run = subprocess.run(["c++filt"], input="\n".join(sorted(symbols)), capture_output=True, text=True)
-    return run.stdout.split("\n")[:len(symbols)] if run.returncode == 0 else sorted(symbols)
 
 
 def parse_depfile(text):
@@ -88,26 +17,9 @@ def parse_depfile(text):
     return [d.replace("\\ ", " ") for d in re.split(r"(?<!\\)\s+", deps.strip()) if d]
 
 
-def allowed_folders(work, compile_argv):
-    """The submission's own files, the include folders of the lab's flags, the system's."""
-    allowed = [(work / "src").resolve(), pathlib.Path("/usr")]
-    allowed += [pathlib.Path(f[2:] if f.startswith("-I") else f).resolve()
-                for i, f in enumerate(compile_argv)
-                if f.startswith("-I") or (i > 0 and compile_argv[i - 1] == "-isystem")]
-    return allowed
-
-
-def outside_includes(work, flags, name, compile_argv):
-    """The first file src/<name> includes from outside the allowed folders (names only: the
-    compiler's error messages could quote such a file)."""
-    run = subprocess.run(flags + ["-M", "-MG", f"src/{name}"], cwd=work, capture_output=True, text=True)
-    allowed = allowed_folders(work, compile_argv)
-    for dep in parse_depfile(run.stdout):
-        path = pathlib.Path(dep)
-        resolved = (work / path).resolve() if not path.is_absolute() else path.resolve()
-        if not any(resolved.is_relative_to(folder) for folder in allowed):
-            return dep
-    return None
+def allowed_folders(work, build):
+    """The submission's own files, the folders the compiler's sandbox shows (sealed_compile.py)."""
+    return [(work / "src").resolve(), *build.sealed.include_folders()]
 
 
 def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
@@ -118,7 +30,7 @@ def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
     reference's other exercise files define: a file that defines another exercise's function
     (which its grading program takes from the reference) is flagged too, and so is a file that
     calls what FORBIDDEN_CALLS lists (unless `call_check` is off, to test the sandbox)."""
-    allowed = allowed_folders(work, build.compile_argv)
+    allowed = allowed_folders(work, build)
     flagged = {}
     defined_in = symbols_by_file(objects)
     undefined_in = symbols_by_file(objects, undefined=True)
@@ -136,7 +48,9 @@ def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
         deps = obj.with_suffix(".d")
         for dep in parse_depfile(deps.read_text()) if deps.exists() else []:
             if not inside(dep):
-                flagged.setdefault(name, f"includes {dep}, a file outside the submission and the framework")
+                # Its name only: the path may be the grading tree's.
+                flagged.setdefault(name, f"includes {pathlib.PurePath(dep).name}, a file outside the submission "
+                                         f"and the framework")
                 break
         used = undefined_in[str(obj)] & build.oracle_symbols
         if used:
@@ -145,20 +59,14 @@ def find_cheats(objects, work, build, lab, notes, others=None, call_check=True):
         if defined:
             flagged.setdefault(name, "redefines symbols of the framework, GoogleTest or the grader ("
                                + ", ".join(demangle(defined)[:3]) + ")")
-        reached = forbidden_calls(undefined_in[str(obj)]) if call_check else []
+        reached = forbidden_call_reason(undefined_in[str(obj)]) if call_check else None
         if reached:
-            what = sorted({w for _, w in reached})
-            called = sorted({d.split("(")[0] for d in demangle([s for s, _ in reached])})
-            flagged.setdefault(name, f"calls {', '.join(called[:3])}, which reach "
-                               f"{' and '.join(what)}: exercise code may compute, allocate and print, nothing more")
+            flagged.setdefault(name, reached)
         foreign = defined_in[str(obj)] & (others or {}).get(name, set())
         if foreign:
             flagged.setdefault(name, "defines functions of another exercise file ("
                                + ", ".join(demangle(foreign)[:3]) + "); each exercise is graded in its own file")
     for name, why in flagged.items():
-        lost = exercises_in(lab.solution / name)
-        what = f"exercise {', '.join(lost)} scores 0" if lost else "it was left out"
-        notes.append(f"{name} {why}: it is graded as the released skeleton's {name}, so {what}"
-                     if name in {p.name for p in lab.skeleton.iterdir()} else
-                     f"{name} {why}: it was left out of the build")
+        notes.append(replaced_note(name, why, exercises_in(lab.solution / name),
+                                   name in {p.name for p in lab.skeleton.iterdir()}))
     return sorted(flagged)

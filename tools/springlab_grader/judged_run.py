@@ -4,6 +4,7 @@ mount namespaces; only /usr, a private /tmp and the worker program visible; a cl
 environment; nothing left running afterwards), and the judge, a program without student code
 that replays the worker's call trace and decides. Only the judge's report counts."""
 import dataclasses
+import errno
 import fcntl
 import functools
 import json
@@ -18,7 +19,9 @@ import tempfile
 import threading
 import time
 
-from .sandbox import Sandbox, read_until_closed, tail
+from .failures import clean, crash_signal, signal_name
+from .sandbox import Sandbox, read_until_closed, reap, tail
+from .staging import stage
 
 # The worker sees these variables and nothing else of the grader's environment.
 WORKER_ENV = {"PATH": "/usr/bin:/bin", "HOME": "/tmp", "TMPDIR": "/tmp", "LANG": "C.UTF-8", "OMP_NUM_THREADS": "1"}
@@ -61,7 +64,8 @@ def seccomp_filter(program):
     run = subprocess.run([program], capture_output=True)
     if run.returncode != 0 or not run.stdout or len(run.stdout) % 8:
         return None
-    handle, path = tempfile.mkstemp(prefix="springlab-seccomp-", suffix=".bpf")
+    # In this grader's stage, removed with it (staging.py).
+    handle, path = tempfile.mkstemp(prefix="springlab-seccomp-", suffix=".bpf", dir=stage().root)
     with os.fdopen(handle, "wb") as out:
         out.write(run.stdout)
     return path
@@ -106,16 +110,10 @@ def worker_uid(slot):
         return _claimed[slot][0]
 
 
-def crash_signal(returncode):
-    """The signal that ended a launched program, or None: killed outright (a negative code), or,
-    under bubblewrap, which exits with 128 + the signal of the program it ran."""
-    if returncode is None:
-        return None
-    if returncode < 0:
-        return -returncode
-    if returncode > 128 and returncode - 128 in signal.Signals._value2member_map_:
-        return returncode - 128
-    return None
+def judge_uid(slot):
+    """The user a submission's judges run as when the grader is root: paired with its workers'
+    user (worker_uid, whose lock it shares), 4000 below it, so never a worker's."""
+    return worker_uid(slot) - 4000
 
 
 @dataclasses.dataclass
@@ -125,11 +123,10 @@ class Fate:
     output: str
 
     def describe(self):
-        from .gtest_runner import signal_name
         if self.returncode is None:
             return "it was still running at the time limit (an infinite loop, or far too much work)"
         if crash_signal(self.returncode) is not None:
-            return f"it crashed: {signal_name(crash_signal(self.returncode))}"
+            return f"it crashed: {signal_name(crash_signal(self.returncode), self.output)}"
         return f"its process exited with code {self.returncode} before the call returned (exit() or abort)"
 
 
@@ -140,6 +137,7 @@ class JudgedRun:
     judge_output: str
     worker: Fate
     seconds: float
+    cpu_seconds: float = 0.0  # judge and worker; the time limit when either was stopped at it
 
 
 # Every worker's command line, whatever test it runs (the test comes on its standard input).
@@ -153,7 +151,7 @@ SECCOMP_FD = 4
 PROGRAM_NAME = "/sandbox/test"
 
 
-def worker_argv(program, env, seccomp_fd=None):
+def worker_argv(program, env, seccomp_fd=None, info_fd=None):
     """The command line of every launch: bwrap around the program, which is bound read-only
     at /sandbox/test and runs in a private /tmp with the environment worker_env(env), the
     seccomp filter read from seccomp_fd (if any) loaded just before it starts. Without
@@ -164,6 +162,8 @@ def worker_argv(program, env, seccomp_fd=None):
     argv = [bubblewrap(), "--unshare-all", "--die-with-parent", "--new-session", "--clearenv"]
     if seccomp_fd is not None:
         argv += ["--seccomp", str(seccomp_fd)]
+    if info_fd is not None:  # where bwrap says the sandbox's first process (sandbox_cpu_seconds)
+        argv += ["--info-fd", str(info_fd)]
     for key, value in worker_env(env).items():
         argv += ["--setenv", key, value]
     argv += ["--ro-bind", "/usr", "/usr", "--symlink", "usr/lib", "/lib", "--symlink", "usr/lib64", "/lib64",
@@ -186,11 +186,49 @@ class Launch:
     proc: subprocess.Popen
     channel: int
     private: str
+    info: int | None = None  # bwrap's --info-fd, read end
 
     def finish(self):
-        """Kill whatever is left of it (its process group) and remove its private folder."""
-        kill_group(self.proc)
+        """Kill whatever is left of it (its process group) and remove its private folder; its
+        CPU seconds (sandbox.reap), the program's inside bubblewrap included."""
+        cpu = kill_group(self.proc)
+        if self.info is not None:
+            cpu += sandbox_cpu_seconds(read_until_closed(self.info, time.monotonic() + 1, cap=1 << 16))
+            os.close(self.info)
+            self.info = None
         shutil.rmtree(self.private, ignore_errors=True)
+        return cpu
+
+
+@functools.lru_cache(maxsize=1)
+def become_subreaper():
+    """Make this grader the reaper of its orphans (Linux's PR_SET_CHILD_SUBREAPER): bubblewrap
+    leaves its sandbox's first process unreaped when it ends, and only its reaper learns that
+    process's CPU time (and its children's). True if set."""
+    try:
+        import ctypes
+        return ctypes.CDLL(None, use_errno=True).prctl(36, 1, 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def sandbox_cpu_seconds(info):
+    """The CPU seconds of the sandbox's first process (bwrap --info-fd names it: "child-pid"),
+    reaped here as its subreaper once bubblewrap has ended; 0 when it cannot be."""
+    match = re.search(rb'"child-pid":\s*(\d+)', info)
+    if not match or not become_subreaper():
+        return 0.0
+    pid, deadline = int(match[1]), time.monotonic() + 2.0
+    while True:
+        try:
+            done, _, usage = os.wait4(pid, os.WNOHANG)
+        except ChildProcessError:  # not ours (bubblewrap reaped it) or gone
+            return 0.0
+        if done:
+            return usage.ru_utime + usage.ru_stime
+        if time.monotonic() > deadline:
+            return 0.0
+        time.sleep(0.005)
 
 
 def launch_worker(program, test, sandbox: Sandbox, env, log, slot=0, seccomp=None):
@@ -211,7 +249,8 @@ def launch_worker(program, test, sandbox: Sandbox, env, log, slot=0, seccomp=Non
         os.chown(private, uid, uid)
     bpf = seccomp_filter(seccomp) if bubblewrap() else None
     seccomp_fd = os.open(bpf, os.O_RDONLY) if bpf else None
-    given = [channel_w] + ([seccomp_fd] if seccomp_fd is not None else [])
+    info_r, info_w = os.pipe() if bubblewrap() and become_subreaper() else (None, None)
+    given = [channel_w] + ([seccomp_fd] if seccomp_fd is not None else []) + ([info_w] if info_w is not None else [])
     top = os.sysconf("SC_OPEN_MAX")
 
     def in_child():
@@ -227,7 +266,8 @@ def launch_worker(program, test, sandbox: Sandbox, env, log, slot=0, seccomp=Non
         for which, value in limits:
             resource.setrlimit(which, (value, value))
 
-    argv = worker_argv(program, env, SECCOMP_FD if seccomp_fd is not None else None)
+    argv = worker_argv(program, env, SECCOMP_FD if seccomp_fd is not None else None,
+                       CHANNEL_FD + len(given) - 1 if info_w is not None else None)
     try:
         proc = subprocess.Popen(
             argv, executable=None if bubblewrap() else str(program),
@@ -235,13 +275,13 @@ def launch_worker(program, test, sandbox: Sandbox, env, log, slot=0, seccomp=Non
             stdin=name_r, stdout=log, stderr=subprocess.STDOUT, close_fds=False, process_group=0,
             preexec_fn=in_child, user=uid, group=uid, extra_groups=[] if uid else None)
     finally:
-        for fd in (channel_w, name_r, seccomp_fd):
+        for fd in (channel_w, name_r, seccomp_fd, info_w):
             if fd is not None:
                 os.close(fd)
     # A test name is far below a pipe's buffer: this write never waits for the program.
     os.write(name_w, test.encode() + b"\n")
     os.close(name_w)
-    return Launch(proc, channel_r, private)
+    return Launch(proc, channel_r, private, info_r)
 
 
 def starts_in_bubblewrap(program, sandbox: Sandbox, seccomp=None):
@@ -274,11 +314,17 @@ def run_judged(judge, worker, test, sandbox: Sandbox, env, slot=0, seccomp=None)
     with tempfile.TemporaryFile() as judge_log, tempfile.TemporaryFile() as worker_log:
         launch = launch_worker(worker, test, sandbox, env, worker_log, slot=slot, seccomp=seccomp)
         trace_r = launch.channel
-        judge_proc = subprocess.Popen(
-            [judge, f"--gtest_filter={test}", *WORKER_ARGS, f"--springlab-report=/dev/fd/{report_w}"],
-            env={**WORKER_ENV, **env, "SPRINGLAB_CALL_TRACE_FD": str(trace_r)},
+        # The judge runs no student code but reads what it sent: it runs unprivileged too, as a
+        # user of its own (never the worker's, who could then reach it), from the stage.
+        uid = judge_uid(slot) if os.geteuid() == 0 else None
+        if uid is not None:
+            os.fchown(report_w, uid, uid)  # it opens /dev/fd/N: the pipe must be its own
+        judge_proc = start_retrying(
+            [str(stage().program(judge)), f"--gtest_filter={test}", *WORKER_ARGS,
+             f"--springlab-report=/dev/fd/{report_w}"],
+            env={**WORKER_ENV, **env, "SPRINGLAB_CALL_TRACE_FD": str(trace_r)}, cwd="/",
             stdin=subprocess.DEVNULL, stdout=judge_log, stderr=subprocess.STDOUT, pass_fds=(trace_r, report_w),
-            process_group=0, preexec_fn=limited)
+            process_group=0, preexec_fn=limited, user=uid, group=uid, extra_groups=[] if uid else None)
         for fd in (trace_r, report_w):
             os.close(fd)
         deadline = start + sandbox.timeout
@@ -288,30 +334,42 @@ def run_judged(judge, worker, test, sandbox: Sandbox, env, slot=0, seccomp=None)
         # The judge is done: the worker has nothing left to say.
         worker_code = wait_until(launch.proc, deadline if judge_code is None else time.monotonic() + 0.5)
         # bubblewrap's PID namespace ends with its first process: nothing of the worker is left.
-        kill_group(judge_proc)
-        launch.finish()
+        cpu = kill_group(judge_proc) + launch.finish()
+        if judge_code is None:
+            cpu = max(cpu, sandbox.timeout)  # stopped at the wall-time limit: it costs the limit
         seconds = time.monotonic() - start
         try:
             parsed = json.loads(report.decode("utf-8", "replace")) if report.strip() else None
         except ValueError:
             parsed = None
         return JudgedRun(parsed if isinstance(parsed, dict) else None, judge_code, read_tail(judge_log),
-                         Fate(worker_code, read_tail(worker_log)), seconds)
+                         Fate(worker_code, read_tail(worker_log)), seconds, cpu)
+
+
+def start_retrying(argv, **options):
+    """subprocess.Popen, tried again while the program is "busy": a program just copied to the
+    stage may still be open for writing in a child another thread forked meanwhile (ETXTBSY
+    until that child execs)."""
+    for attempt in range(50):
+        try:
+            return subprocess.Popen(argv, **options)
+        except OSError as error:
+            if error.errno != errno.ETXTBSY or attempt == 49:
+                raise
+            time.sleep(0.02)
 
 
 def wait_until(proc, deadline):
-    try:
-        return proc.wait(timeout=max(0.0, deadline - time.monotonic()))
-    except subprocess.TimeoutExpired:
-        return None
+    return reap(proc, deadline)[0]
 
 
 def kill_group(proc):
+    """Kill a launched program's process group and reap it; its CPU seconds (sandbox.reap)."""
     try:
         os.killpg(proc.pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
         pass
-    proc.wait()
+    return reap(proc)[1] or 0.0
 
 
 def kill_user(uid):
@@ -354,7 +412,6 @@ def failed_assertion(judge_output):
 
 def outcome_of(run: JudgedRun, name, timeout):
     """(passed, message) of one test from a judged run."""
-    from .gtest_runner import clean, signal_name
     tests = [t for t in (run.report or {}).get("tests", []) if isinstance(t, dict)]
     if run.judge_code is None:
         why = run.worker.describe() if run.worker.returncode is None else "the judge ran out of time"

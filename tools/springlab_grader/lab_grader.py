@@ -9,7 +9,6 @@ import hashlib
 import os
 import pathlib
 import re
-import shlex
 import shutil
 import subprocess
 import sys
@@ -24,16 +23,26 @@ from .gtest_runner import Budget, BudgetRule, draw_seed, grade_binary, grade_jud
 from .labs import ROOT, discover_labs, exercises_in
 from .reports import write_submission
 from .results import Graded, LabResult, TestResult, failed_lab
-from .sandbox import TIMEOUT, Sandbox, run_sandboxed, tail
+from .sandbox import TIMEOUT, Sandbox, tail
+from .sealed_compile import compile_sandbox as make_compile_sandbox
+from .sealed_compile import scrub, stop_reason
+from .staging import stage
 from .submission import SOURCE_SUFFIXES, collect_sources, locate_labs, unpack
 
-COMPILE_TIMEOUT = 180.0
-# The time budget of a lab: BUDGET_FLOOR seconds plus BUDGET_FACTOR times the reference's own
-# grading time (the sum of its tests' seconds), shared among its files (BudgetRule); a
+# The time budget of a lab's tests: BUDGET_FLOOR seconds plus BUDGET_FACTOR times the
+# reference's own CPU time on them, in CPU seconds, shared among its files (BudgetRule); a
 # submission's is the sum of its labs'. A judged test runs two processes and streams a trace,
-# about twice the reference's one process: 10 leaves five times that of slack (a loaded machine).
+# about twice the reference's one process: 10 leaves five times that of slack.
 BUDGET_FACTOR = 10.0
 BUDGET_FLOOR = 120.0
+# What a lab may cost a grading slot, whatever its code does: its compiles may use
+# COMPILE_BUDGET CPU seconds together (an honest exercise file takes about 3), and the whole lab
+# (compiles, links, tests) LAB_WALL_LIMIT seconds of wall time: no compile or test starts after
+# it, and none runs past it (each one's time limit is cut to what is left). The worst case for
+# one lab is therefore LAB_WALL_LIMIT and the links of what compiled in time (a second each):
+# under five minutes. An honest lab takes under a minute cold on an idle machine.
+COMPILE_BUDGET = 90.0
+LAB_WALL_LIMIT = 270.0
 
 
 class LabGrader:
@@ -55,6 +64,8 @@ class LabGrader:
         self.notes = []
         self.links = 0
         self.timing = {"compile": 0.0, "link": 0.0, "test": 0.0}
+        self.compile_cpu = 0.0  # CPU seconds its compiles used (COMPILE_BUDGET)
+        self.compile_lock = threading.Lock()
 
     def grade(self, submitted):
         """Compile, check, link and test; a LabResult whatever the student's code does."""
@@ -98,7 +109,7 @@ class LabGrader:
         for name in integrity.find_cheats(list(objects.values()), self.work, build, lab, notes, others,
                                           call_check=self.call_check):
             objects.pop(name, None)
-            reasons[name] = f"{name} was replaced by the released skeleton's file (see the note)"
+            reasons[name] = integrity.REPLACED.format(name=name)
 
         if not per_file:
             results = self.grade_whole(objects, skeleton_objects, reasons)
@@ -109,6 +120,7 @@ class LabGrader:
         else:
             results = self.grade_per_file(objects, solution, file_exercises, reasons)
         self.timing["links"] = self.links
+        self.timing["compile_cpu"] = self.compile_cpu
         return LabResult(lab.manifest, results, notes, self.seed, time.monotonic() - started, dict(self.timing))
 
     @staticmethod
@@ -196,7 +208,7 @@ class LabGrader:
             # spend the time of the others.
             share = None
             if self.budget is not None and self.budget_rule is not None:
-                share = Budget(self.budget_rule.share(tests, len(workers)), parent=self.budget.parent,
+                share = Budget(self.budget_rule.share(tests, len(workers)), parent=self.budget,
                                what=f"exercise file ({key})")
             mark = time.monotonic()
             for r in grade_judged(self.build.link.judges[key], str(binary), self.lab.manifest, self.seed,
@@ -265,38 +277,68 @@ class LabGrader:
             os.chmod(path, 0o755 if path.is_dir() else 0o644)
         if ids:
             os.chown(obj, *ids)
+        os.chmod(obj, 0o755)
         headers = b"".join(hashlib.sha256(files[n]).digest() for n in sorted(files) if not n.endswith(".cpp"))
         sources = sorted(n for n in changed if n.endswith(".cpp"))
+        if sources and not self.build.sealed.sealed:
+            self.notes.append("sandbox: the compiler runs without bubblewrap here (it cannot create namespaces), as "
+                              "the sandbox user alone: it can read what that user can; install bubblewrap, or allow "
+                              "user namespaces, to seal it")
         with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, self.jobs)) as pool:
             outcomes = dict(zip(sources, pool.map(lambda n: self.compile_one(n, files[n], headers), sources)))
         return ({n: o for n, (o, e) in outcomes.items() if not e}, {n: e for n, (o, e) in outcomes.items() if e})
 
     def compile_one(self, name, data, headers):
-        """Compile src/<name> to an object, or reuse the same compile of an earlier submission."""
+        """Compile src/<name> to an object in the compiler's sandbox (sealed_compile.py), or
+        reuse the same compile of an earlier submission."""
         flags = self.build.compile_argv + ["-Isrc"]
-        key = self.cache.objects.key(flags, name, data, headers)
+        # The key holds where the sandbox shows each include folder too: an object's dependency
+        # file names those places, and the include check reads them (a tree elsewhere, as a
+        # Gradescope bundle is, may show the same folders at other places).
+        shown = [str(inside) for _, inside in self.build.sealed.binds] + [str(self.build.sealed.sealed)]
+        key = self.cache.objects.key(flags + shown, name, data, headers)
         private = self.work / "objects"  # the grader's copies, out of the sandbox user's reach
         private.mkdir(exist_ok=True)
         cached = self.cache.objects.fetch(key, private, name)
         if cached is not None:
             return cached, None
-        argv = flags + ["-fdiagnostics-color=never", "-MD", "-MF", f"obj/{name}.d",
-                        "-o", f"obj/{name}.o", "-c", f"src/{name}"]
-        run = run_sandboxed(argv, self.compile_sandbox, cwd=self.work)
-        if run.returncode is None:
-            return None, f"{name}: compiling took longer than {self.compile_sandbox.timeout:g} s"
+        late = self.budget.past_wall_limit() if self.budget else None
+        if late is not None:
+            return None, (f"{name}: not compiled: the lab had already taken {late.wall:.0f} s of wall time, its "
+                          f"limit")
+        with self.compile_lock:
+            used = self.compile_cpu
+        if used >= COMPILE_BUDGET:
+            return None, (f"{name}: not compiled: the lab's files had already used {used:.0f} s of the compiler's "
+                          f"CPU time, its budget of {COMPILE_BUDGET:g} s (an exercise file compiles in seconds)")
+        # No compile runs past the lab's wall-time limit.
+        left = self.budget.wall_left() if self.budget else None
+        sandbox = self.compile_sandbox if left is None or left >= self.compile_sandbox.timeout else \
+            dataclasses.replace(self.compile_sandbox, timeout=max(0.1, left))
+        run = self.build.sealed.run(self.work, name, sandbox)
+        with self.compile_lock:
+            self.compile_cpu += run.cpu_seconds
+        stopped = stop_reason(run, name)
+        if stopped:
+            return None, stopped
+        output = scrub(run.output, self.grader_places())
         if run.returncode != 0:
-            outside = integrity.outside_includes(self.work, flags, name, self.build.compile_argv)
-            if outside:
-                return None, f"{name} includes {outside}, a file outside the submission and the framework"
-            return None, first_errors(run.output)
-        if run.output.strip():
-            self.notes.append(f"{name}: the compiler warns:\n{tail(run.output, 12)}")
-        # Copy out of the sandbox user's folder before anything reads it.
-        shutil.copyfile(self.work / "obj" / f"{name}.o", private / f"{name}.o")
-        shutil.copyfile(self.work / "obj" / f"{name}.d", private / f"{name}.d")
+            return None, first_errors(output)
+        if output.strip():
+            self.notes.append(f"{name}: the compiler warns:\n{tail(output, 12)}")
+        # Copy out of the sandbox user's folder before anything reads it: plain files only.
+        for suffix in (".o", ".d"):
+            made = self.work / "obj" / f"{name}{suffix}"
+            if made.is_symlink() or not made.is_file():
+                return None, f"{name}: the compiler left no {suffix} file"
+            shutil.copyfile(made, private / f"{name}{suffix}")
         self.cache.objects.store(key, private / f"{name}.o", private / f"{name}.d")
         return private / f"{name}.o", None
+
+    def grader_places(self):
+        """The grader's own paths, as a student must never read them in a message."""
+        return {ROOT: "<grading tree>", self.cache.path: "<grading build>", stage().root: "/springlab",
+                self.work.parent: "<grading folder>"}
 
     # -- linking
     def link_all(self, programs, worker=False):
@@ -371,7 +413,7 @@ def first_errors(output, lines=25):
 
 # ---- one submission --------------------------------------------------------------------------
 def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandbox, name=None, only=None,
-                     budgets=None, slot=0, call_check=True):
+                     budgets=None, slot=0, call_check=True, lab_wall_limit=LAB_WALL_LIMIT):
     """Grade a submission (a folder or a zip: a labs/ folder, a whole repository, lab folders
     or the flat files of one lab). `only`: the one lab to grade (--lab), the others are left
     out of the result; `budgets`: {lab name: its BudgetRule, or None for no budget}."""
@@ -403,7 +445,7 @@ def grade_submission(submission, cache, labs, seed, jobs, sandbox, compile_sandb
             os.chmod(work, 0o711)
             grader = LabGrader(cache, lab, work, sandbox, compile_sandbox, jobs, seed,
                                budget=Budget(budgets[lab.name].limit if budgets.get(lab.name) else None,
-                                             parent=total),
+                                             parent=total, wall=lab_wall_limit),
                                slot=slot, call_check=call_check, budget_rule=budgets.get(lab.name))
             grader.notes.extend(lab_notes)
             results.append(grader.grade(submitted))
@@ -429,6 +471,7 @@ class Session:
     budget_floor: float = BUDGET_FLOOR
     budgets: dict = dataclasses.field(default_factory=dict)
     call_check: bool = True     # integrity.FORBIDDEN_CALLS; off only to test the sandbox
+    lab_wall_limit: float = LAB_WALL_LIMIT
 
     def prepare(self):
         """Find each lab's build (compile flags, link, test list) and its time budget (a
@@ -446,33 +489,25 @@ class Session:
         self.prepare()
         return grade_submission(path, self.cache, self.labs, self.seed, jobs, self.sandbox, self.compile_sandbox,
                                 name=name, only=self.only, budgets=self.budgets, slot=slot,
-                                call_check=self.call_check)
+                                call_check=self.call_check, lab_wall_limit=self.lab_wall_limit)
 
 
 def start_session(cache_path, build=True, jobs=1, seed=None, timeout=TIMEOUT, memory_mb=4096, only=None,
-                  budget_factor=BUDGET_FACTOR, budget_floor=BUDGET_FLOOR, call_check=True):
+                  budget_factor=BUDGET_FACTOR, budget_floor=BUDGET_FLOOR, call_check=True, lab_wall_limit=LAB_WALL_LIMIT):
     labs = discover_labs()
     if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
         raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
     if not (ROOT / "solutions").exists():
         raise GradeError(f"{ROOT}: no solutions/ folder: grading needs the instructor tree, not a student release")
     sandbox = Sandbox(timeout=timeout, memory_mb=memory_mb)
-    compile_sandbox = Sandbox(timeout=COMPILE_TIMEOUT, memory_mb=0, file_mb=256)
+    compile_sandbox = make_compile_sandbox()
     # With --lab, only that lab's grading programs are built (a Gradescope assignment per lab).
     cache = Cache(cache_path, [lab for lab in labs if only is None or only in (lab.name, lab.dir)] or labs,
                   build=build, jobs=jobs)
-    if compile_sandbox.identity():
-        # The compiler runs as the sandbox user only if that user can read the framework's
-        # headers (not so in a checkout under /root); else as us, with the include check.
-        folders = {f[2:] for lab in cache.labs for f in cache.lab(lab, sandbox).compile_argv if f.startswith("-I")}
-        probe = run_sandboxed(["/bin/sh", "-c", " && ".join(f"test -r {shlex.quote(d)} -a -x {shlex.quote(d)}"
-                                                            for d in sorted(folders)) or "true"], compile_sandbox)
-        if probe.returncode != 0:
-            compile_sandbox.drop_to = None
     if only is not None and not any(only in (lab.name, lab.dir) for lab in labs):
         raise GradeError(f"--lab {only}: no such lab (labs: {', '.join(lab.name for lab in labs)})")
     return Session(labs, cache, sandbox, compile_sandbox, draw_seed(seed), only, budget_factor, budget_floor,
-                   call_check=call_check)
+                   call_check=call_check, lab_wall_limit=lab_wall_limit)
 
 
 def grade_class(session, entries, out, jobs, progress=sys.stderr):

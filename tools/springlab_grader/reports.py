@@ -27,10 +27,14 @@ def print_lab(lab, quiet=False, file=sys.stdout):
           file=file)
 
 
-def report_markdown(labs, title, seed):
+def report_markdown(labs, title, seed, notes=()):
+    """The student's report; `notes` are the submission's own (a zip's refused entries, links
+    refused), every one of which results.json carries too."""
     score, max_score = sum(lab.score for lab in labs), sum(lab.max_score for lab in labs)
     lines = [f"# {title}: {score:g} / {max_score:g} points", "",
              f"Random inputs drawn with SPRINGLAB_SEED={seed} (set it to replay this run).", ""]
+    for note in notes:
+        lines += ["> **Note**", ">", *(f"> {n}" if n else ">" for n in note.splitlines()), ""]
     if labs:
         lines += ["| lab | points |", "|---|---|"]
         lines += [f"| {lab.manifest['title']} | {lab.score:g} / {lab.max_score:g} |" for lab in labs]
@@ -90,7 +94,7 @@ def junit_xml(labs, seconds):
 def write_outputs(out, labs, title, seconds, seed, notes=()):
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    (out / "report.md").write_text(report_markdown(labs, title, seed))
+    (out / "report.md").write_text(report_markdown(labs, title, seed, notes))
     (out / "results.json").write_text(json.dumps(gradescope_results(labs, seconds, seed, notes), indent=1) + "\n")
     (out / "junit.xml").write_text(junit_xml(labs, seconds))
 

@@ -10,6 +10,7 @@ class TestResult:
     passed: bool
     message: str
     seconds: float
+    cpu_seconds: float = 0.0  # the test's processes' CPU time (sandbox.reap)
 
     @property
     def score(self):

@@ -24,6 +24,7 @@ class Sandbox:
     stack_mb: int = 64
     file_mb: int = 64
     drop_to: str = "nobody"  # the user tests run as when the grader is root
+    cpu_seconds: float = None  # CPU time per process; None: the wall-time limit and 2 s
 
     def identity(self):
         if os.geteuid() != 0 or not self.drop_to:
@@ -33,7 +34,7 @@ class Sandbox:
 
     def limits(self):
         mib = 1 << 20
-        cpu = int(self.timeout) + 2
+        cpu = int(self.cpu_seconds) if self.cpu_seconds else int(self.timeout) + 2
         pairs = [(resource.RLIMIT_CPU, cpu), (resource.RLIMIT_STACK, self.stack_mb * mib),
                  (resource.RLIMIT_FSIZE, self.file_mb * mib), (resource.RLIMIT_CORE, 0),
                  (resource.RLIMIT_NOFILE, 256)]
@@ -50,6 +51,40 @@ class Run:
     returncode: int | None  # None: killed at the time limit
     seconds: float
     output: str             # stdout and stderr, the end of it
+    cpu_seconds: float = 0.0  # its CPU time and that of the processes it waited for
+
+
+def reap(proc, deadline=None):
+    """Wait for a child until `deadline` (time.monotonic(); None: for good): (its exit code, or
+    None at the deadline; the CPU seconds, user and system, of it and the descendants it
+    waited for). CPU time is what budgets count: a loaded machine stretches wall time, never
+    CPU time. The code and the seconds stay on proc (proc.returncode, proc.cpu_seconds)."""
+    if proc.returncode is not None:
+        return proc.returncode, getattr(proc, "cpu_seconds", 0.0)
+    try:
+        handle = os.pidfd_open(proc.pid)
+    except (AttributeError, OSError):
+        handle = None
+    try:
+        while True:
+            try:
+                pid, status, usage = os.wait4(proc.pid, 0 if deadline is None else os.WNOHANG)
+            except ChildProcessError:  # reaped elsewhere
+                return proc.returncode, getattr(proc, "cpu_seconds", 0.0)
+            if pid:
+                proc.returncode = os.waitstatus_to_exitcode(status)
+                proc.cpu_seconds = usage.ru_utime + usage.ru_stime
+                return proc.returncode, proc.cpu_seconds
+            left = deadline - time.monotonic()
+            if left <= 0:
+                return None, None
+            if handle is not None:
+                select.select([handle], [], [], left)
+            else:
+                time.sleep(min(left, 0.01))
+    finally:
+        if handle is not None:
+            os.close(handle)
 
 
 def run_sandboxed(argv, sandbox, env_extra=None, cwd=None):
@@ -84,17 +119,15 @@ def run_sandboxed(argv, sandbox, env_extra=None, cwd=None):
                                 user=ids[0] if ids else None, group=ids[1] if ids else None,
                                 extra_groups=[] if ids else None)
         deadline = start + sandbox.timeout
-        try:
-            code = proc.wait(timeout=max(0.0, deadline - time.monotonic()))
-        except subprocess.TimeoutExpired:
-            code = None
+        code, cpu = reap(proc, deadline)
         # Whatever the test left running in its process group goes too.
         try:
             os.killpg(proc.pid, signal.SIGKILL)
         except (ProcessLookupError, PermissionError):
             pass
         if code is None:
-            proc.wait()
+            reap(proc)
+            cpu = sandbox.timeout  # stopped at the wall-time limit: it costs the limit
         seconds = time.monotonic() - start
         log.seek(0, os.SEEK_END)
         size = log.tell()
@@ -103,7 +136,7 @@ def run_sandboxed(argv, sandbox, env_extra=None, cwd=None):
         if size > 8192:
             output = f"[... {size - 8192} bytes of output left out ...]\n" + output
         log.close()
-        return Run(code, seconds, output)
+        return Run(code, seconds, output, cpu)
 
 
 def read_until_closed(fd, deadline, cap=1 << 20):

@@ -70,7 +70,9 @@ def find_lab_folder(root, lab):
     best, best_key = None, None
     for dirpath, dirnames, _ in os.walk(root):
         depth = len(pathlib.Path(dirpath).relative_to(root).parts)
-        dirnames[:] = sorted(d for d in dirnames if not d.startswith((".", "__MACOSX")) and depth < 6)
+        # A symbolic link is never followed (links_outside notes those that lead out).
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith((".", "__MACOSX")) and depth < 6
+                             and not (pathlib.Path(dirpath) / d).is_symlink())
         if lab.dir in dirnames:
             candidate = pathlib.Path(dirpath) / lab.dir
             count = sum((candidate / n).is_file() for n in names)
@@ -90,7 +92,7 @@ def flat_folder(root):
         entries = [p for p in folder.iterdir() if not p.name.startswith((".", "__MACOSX"))]
         if any(p.is_file() and p.suffix in SOURCE_SUFFIXES for p in entries):
             return folder
-        dirs = [p for p in entries if p.is_dir()]
+        dirs = [p for p in entries if p.is_dir() and not p.is_symlink()]
         if len(dirs) != 1:
             return folder
         folder = dirs[0]
@@ -103,6 +105,7 @@ def locate_labs(root, labs, notes, only=None):
     the lab named by `only` (--lab), else to the one lab whose skeleton has the most of those
     file names (a tie is not guessed: the report asks for --lab)."""
     wanted = [lab for lab in labs if only is None or lab.name == only or lab.dir == only]
+    notes.extend(links_outside(root, {lab.dir for lab in wanted} | {"labs"}))
     found = {lab.dir: find_lab_folder(root, lab) for lab in wanted}
     if any(found.values()):
         return found
@@ -118,6 +121,33 @@ def locate_labs(root, labs, notes, only=None):
                      f"{' or '.join(winners)}: grade it with --lab NAME")
         return {d: None for d in found}
     return {d: (flat if d in winners else None) for d in found}
+
+
+def links_outside(root, folder_names, depth=6):
+    """A note for each symbolic link in the submission that leads outside it, and for each
+    symbolic link named like a lab folder (or labs/), wherever it leads: none is followed,
+    at any depth. The link's target is never printed (it may be a path of the grader's)."""
+    root = pathlib.Path(root)
+    inside = root.resolve()
+    notes = []
+    for dirpath, dirnames, filenames in os.walk(root):
+        level = len(pathlib.Path(dirpath).relative_to(root).parts)
+        dirnames[:] = sorted(d for d in dirnames if level < depth)
+        for entry in sorted(dirnames + filenames):
+            path = pathlib.Path(dirpath) / entry
+            if not path.is_symlink():
+                continue
+            shown = path.relative_to(root).as_posix()
+            try:
+                leads_out = not path.resolve().is_relative_to(inside)
+            except (OSError, RuntimeError):  # a loop of links
+                leads_out = True
+            if leads_out:
+                notes.append(f"{shown}: a symbolic link that leads outside the submission: refused (submit the "
+                             f"files themselves)")
+            elif entry in folder_names:
+                notes.append(f"{shown}: a symbolic link to a folder: refused (submit the folder itself)")
+    return notes
 
 
 def collect_sources(folder, notes, label, skeleton):

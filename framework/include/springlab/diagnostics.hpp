@@ -42,21 +42,30 @@ class BlowUp : public std::runtime_error {
 // could ever hold (its initial energy plus the work gravity can do: the runaway factor); and
 // passivity: a scene that puts no energy in (no wind, pump, moving pinned mass or user drag)
 // cannot gain energy, so a total energy (gravity included) above the highest it had while
-// energy came in, by more than kPassivityFraction of the energy scale for kPassivitySteps
-// checks in a row, is a blow-up. Past the
-// stability limit a nonlinear scene often saturates instead of overflowing (springs flip, the
-// state turns to noise at a bounded energy): passivity catches that. The margin covers the
-// integrator's own energy oscillation (symplectic Euler's true energy swings about its
-// modified energy, by a factor up to 1 / (1 - w dt / 2) of the stiffest mode's energy).
+// energy came in, by more than the integrator's own energy oscillation, is a blow-up. Past
+// the stability limit a nonlinear scene often saturates instead of overflowing (springs flip,
+// the state turns to noise at a bounded energy): passivity catches that.
+//
+// The oscillation allowed: a stable step's true energy swings about a conserved (modified)
+// one. On a mode at a fraction r = dt / limit of its limit symplectic Euler's energy swings
+// by a factor up to (1 + r) / (1 - r) of the mode's energy (a Verlet method's 1 / (1 - r^2),
+// the damped methods' less): 2 / (1 - r) - 1 = 3 at r = 1/2, 65 at r = 0.97. So the swing
+// measured in a short run at half the limit (setEnergySwing), times kSwingMargin = 64
+// (twice the ratio 65 / 3 between the two dts, rounded up), bounds the swing of any stable
+// run up to 0.97 of the limit; the energy a saturated instability gains, a good part of the
+// scene's own, is far above it. Without a measured swing (the viewer) the allowance is
+// kPassivityFraction of the energy scale, and only a run past the step's limit is stopped.
 class BlowUpCheck {
  public:
   // Energy growth factor over the scene's energy scale that counts as a runaway.
   static constexpr double kRunawayFactor = 100.0;
-  // Rise of a passive scene's total energy, in energy scales, that counts as a blow-up.
+  // Rise of a passive scene's total energy, in energy scales, that counts as a blow-up when
+  // no swing was measured.
   static constexpr double kPassivityFraction = 0.5;
-  // Checks in a row the rise must last (the energy of a stable symplectic step swings above
-  // and back within a few steps, however close to its limit).
-  static constexpr int kPassivitySteps = 64;
+  // The measured swing is allowed this many times over (see above), and never less than
+  // kSwingFloor of the energy scale (round-off of a scene whose energy does not move).
+  static constexpr double kSwingMargin = 64.0;
+  static constexpr double kSwingFloor = 1e-4;
 
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
   // The user put energy in (dragged, pinned): never count that as a blow-up.
@@ -74,6 +83,11 @@ class BlowUpCheck {
   void check(Simulation& sim, double dt);
 
   double energyScale() const { return energyScale_; }
+  // The integrator's own energy swing on this scene (J: the largest rise of the total energy
+  // above its start in a short run at half the stability limit); negative: not measured.
+  void setEnergySwing(double joules) { energySwing_ = joules; }
+  // The rise of a passive scene's total energy above its ceiling that counts as a blow-up (J).
+  double passivityAllowance() const;
 
  private:
   // The message's "why it blew up" part for a non-finite state: the forces' story when they
@@ -82,9 +96,15 @@ class BlowUpCheck {
 
   double energyScale_ = 0.0;  // J
   // J, the highest total energy (gravity included) the scene reached while energy came in;
-  // a passive scene may not rise above it by more than kPassivityFraction x energyScale_.
+  // a passive scene may not rise above it by more than passivityAllowance().
   double passiveCeiling_ = 0.0;
-  int passiveExcess_ = 0;  // checks in a row above the ceiling
+  double energySwing_ = -1.0;  // J, setEnergySwing; negative: not measured
+  // Without a measured swing the allowance cannot know how far a stable step's energy swings
+  // near its limit (symplectic Euler's (1 + r) / (1 - r) has no bound as r -> 1), so a rise
+  // counts only when dt is past the limit of the linearised step (computed once per dt).
+  bool beyondLimitOrMeasured(Simulation& sim, double dt);
+  double limitDt_ = -1.0;    // s, the dt beyondLimit_ was computed for
+  bool beyondLimit_ = true;
   // The state at the last check that passed (or at arm()): where the forces are evaluated
   // again when the state turns non-finite.
   State last_;

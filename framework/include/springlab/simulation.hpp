@@ -1,15 +1,17 @@
 #pragma once
-// The base of every lab's system, after the handout's Simulation class:
-//   operate(dt) = init() (zero forces), solve() (add up forces), simulate(dt) (integrate).
-// It has two sides, kept apart:
-//   - physics (class Simulation): the model (masses, springs, gravity), the data (state,
-//     forces), and what integrators and diagnostics call: forces, Jacobians, energies,
-//     the after-step corrections. Every lab derives from it and fills in accumulateForces().
-//   - front end (class SceneFrontEnd): what the viewer, the `sim` command and the studies
-//     ask of a scene besides its physics: its name, shapes, parameters, observables, the
-//     region to frame. Simulation supplies "nothing to show" defaults; labs override them.
-// The model is constant between edits made through Simulation::editModel (pinning, the
-// panel's sliders, a study's scaling): the data changes every step.
+// The base of every lab's system, after the handout's Simulation class. One step is
+// simulate(dt): the integrator asks for the forces (evaluateForces, which zeroes them and calls
+// the lab's accumulateForces) as often as its method needs (once for symplectic Euler, four
+// times for RK4) and moves the state, then the lab's afterStep makes its corrections
+// (kinematic masses, colliders) and the blow-up check looks at the result.
+// What it holds:
+//   - the model (masses, springs, gravity, and a lab's own settings): written while a lab
+//     builds its scene, then only through editModel (pinning, the panel's sliders, a study's
+//     scaling), so whatever a lab derives from it is derived again there;
+//   - the data (state, forces, counters): changes every step;
+//   - what the viewer, the `sim` command and the studies ask of a scene besides its physics
+//     (name, shapes, sliders, observables, the region to frame): "nothing to show" defaults
+//     that labs override.
 #include <functional>
 #include <map>
 #include <memory>
@@ -49,37 +51,10 @@ struct Triangle {
   int a, b, c;
 };
 
-// What the front ends (viewer, `sim`, studies) see of a scene besides its physics. Nothing
-// here is called inside a step; none of it changes the model except through
-// Simulation::editModel.
-class SceneFrontEnd {
- public:
-  virtual ~SceneFrontEnd() = default;
-
-  // Short name of the lab's system for the HUD and error messages ("rope").
-  virtual std::string kind() const = 0;
-  // Parameters the viewer may edit, one slider each; their set() is a model edit.
-  virtual std::vector<Parameter> parameters() = 0;
-  // Named quantities of the current state (volume, pressure, sag) for the HUD and studies.
-  virtual std::vector<Observable> observables() const = 0;
-  // Colliders and markers to draw, in the scene's current state.
-  virtual std::vector<Shape> shapes() const = 0;
-  // The user drags shapes()[index] (a movable one) to `center`; called once per substep
-  // with the drag spread evenly over a frame, so the lab may derive the shape's velocity
-  // (springlab/scene_shapes.hpp: ColliderDrag).
-  virtual void moveShape(int index, const Vec3& center) = 0;
-  // Velocity of whatever the scene lets the user drive (the rope's fixed end).
-  virtual void setControlVelocity(const Vec3& velocity) = 0;
-  // Height of a horizontal ground y = h, when the scene has one (the viewer draws it there).
-  virtual std::optional<double> groundHeight() const = 0;
-  // The region the camera frames at the start.
-  virtual Bounds reach() const = 0;
-};
-
-class Simulation : public SceneFrontEnd {
+class Simulation {
  public:
   explicit Simulation(int dimension);
-  ~Simulation() override;
+  virtual ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
@@ -88,7 +63,6 @@ class Simulation : public SceneFrontEnd {
   // ---- model: written while a lab builds its scene, then only through editModel() ------
   int dimension;                 // 2 (planar, z = 0) or 3
   std::vector<Mass> masses;      // [n]
-  std::vector<Spring> springs;   // [s] indices into masses
   std::vector<Triangle> triangles;  // [t] surface for drawing and wind (may be empty)
   Vec3 gravitation = Vec3::Zero();  // m/s^2
   // The scene's "integrator_options": option values by method name, then option name. Each
@@ -98,28 +72,33 @@ class Simulation : public SceneFrontEnd {
 
   // ---- data: changes every step -----------------------------------------------------
   State state;                   // positions [n], velocities [n], time
-  std::vector<Vec3> force;       // [n] N, forces of the last solve()
+  std::vector<Vec3> force;       // [n] N, the forces solve() or a step's integrator last wrote
   Stats stats;
   SolverSettings solver;         // how hard implicit integrators solve (scene's "solver")
   PhaseProfile profile;          // where the steps' time goes, when enabled (sim --profile, benchmarks)
 
   int numOfMasses() const { return static_cast<int>(masses.size()); }
+  // [s] the springs, indices into masses. Read-only: change them inside editModel, with
+  // editSprings().
+  const std::vector<Spring>& springs() const { return springs_; }
 
-  // ---- the handout's rhythm ----------------------------------------------------------
-  void init();                // zero every force
-  void solve();               // add up the forces at the current state into `force`
-  void simulate(double dt);   // advance one step with the current integrator
-  void operate(double dt);    // one step: the integrator calls init() and solve() itself
+  // ---- the handout's names for a step ------------------------------------------------
+  void init();                // force = 0 for every mass
+  void solve();               // force = the forces at the current state (evaluateForces)
+  void simulate(double dt);   // one step: the integrator (forces included), then afterStep
+  void operate(double dt);    // the handout's whole step: simulate(dt)
 
   // ---- editing the model between steps -------------------------------------------------
   // The one way to change the model once the scene is built (masses, springs, gravity, and
   // a lab's own settings such as wind or gas): runs edit(*this), then forgets the
   // integrator's history (Verlet's previous positions belong to the old model) and re-arms
   // the blow-up check with the edited model's energy (an edit never counts as a blow-up).
-  // The state stays; the edit may change velocities (a newly pinned mass stops). A lab may
-  // keep copies of the model (the cloth's force pass copies every spring's k, L0 and kd): a
-  // spring changed outside editModel is reported by the next force passes as an error.
+  // The state stays; the edit may change velocities (a newly pinned mass stops). Then the
+  // lab derives again what it keeps from the model (onModelEdited).
   void editModel(const std::function<void(Simulation&)>& edit);
+  // The springs, to change: inside editModel's edit, or while a lab builds its scene (before
+  // markInitialState). Anywhere else it throws std::logic_error.
+  std::vector<Spring>& editSprings();
   // Pin a free mass or free a pinned one (a model edit; the mass stops).
   void togglePinned(int index);
 
@@ -143,6 +122,9 @@ class Simulation : public SceneFrontEnd {
   // ---- integrator and run control ----------------------------------------------------
   void setIntegrator(std::unique_ptr<Integrator> integrator);
   Integrator& integrator() const { return *integrator_; }
+  // Put `integrator` in place (as setIntegrator) and hand back the one that ran, options and
+  // all, to be put back later: stepStableDt settles the scene with symplectic Euler first.
+  std::unique_ptr<Integrator> exchangeIntegrator(std::unique_ptr<Integrator> integrator);
   // Restore the initial state (model edits stay), forget integrator history.
   void reset();
   // The state reset() returns to (stability estimates use it after a blow-up).
@@ -150,6 +132,11 @@ class Simulation : public SceneFrontEnd {
   // Turn the blow-up check off for studies that want to watch a method fail.
   void setBlowUpCheck(bool enabled) { blowUpCheckEnabled_ = enabled; }
   bool blowUpCheckEnabled() const { return blowUpCheckEnabled_; }
+  // J, the energy scale the blow-up check measured when it was last armed (reset, edits).
+  double blowUpEnergyScale() const { return blowUpCheck_.energyScale(); }
+  // The integrator's energy swing on this scene for the passivity detector
+  // (BlowUpCheck::setEnergySwing; studies measure it at half the stability limit).
+  void setEnergySwing(double joules) { blowUpCheck_.setEnergySwing(joules); }
 
   // ---- diagnostics --------------------------------------------------------------------
   Energies energies() const;
@@ -179,17 +166,28 @@ class Simulation : public SceneFrontEnd {
   void release();
   std::optional<int> grabbed() const { return grabbed_; }
 
-  // ======== front end: defaults for a scene with nothing to show =========================
-  // parameters() hands out declareParameters() with every set() made a model edit
-  // (editModel); the Parameters refer to this simulation and live no longer than it.
-  std::vector<Parameter> parameters() final;
-  std::vector<Observable> observables() const override { return {}; }
-  std::vector<Shape> shapes() const override { return {}; }
-  void moveShape(int index, const Vec3& center) override { (void)index; (void)center; }
-  void setControlVelocity(const Vec3& velocity) override { (void)velocity; }
-  std::optional<double> groundHeight() const override { return std::nullopt; }
-  // By default the masses' bounding box.
-  Bounds reach() const override;
+  // ======== front end: what the viewer, `sim` and the studies show ========================
+  // Nothing here is called inside a step; none of it changes the model except through
+  // editModel. The defaults are a scene with nothing to show.
+  // Short name of the lab's system for the HUD and error messages ("rope").
+  virtual std::string kind() const = 0;
+  // The sliders of declareParameters(), each set() made a model edit (editModel); the
+  // Parameters refer to this simulation and live no longer than it.
+  std::vector<Parameter> parameters();
+  // Named quantities of the current state (volume, pressure, sag) for the HUD and studies.
+  virtual std::vector<Observable> observables() const { return {}; }
+  // Colliders and markers to draw, in the scene's current state.
+  virtual std::vector<Shape> shapes() const { return {}; }
+  // The user drags shapes()[index] (a movable one) to `center`; called once per substep
+  // with the drag spread evenly over a frame, so the lab may derive the shape's velocity
+  // (springlab/scene_shapes.hpp: ColliderDrag).
+  virtual void moveShape(int index, const Vec3& center) { (void)index; (void)center; }
+  // Velocity of whatever the scene lets the user drive (the rope's fixed end).
+  virtual void setControlVelocity(const Vec3& velocity) { (void)velocity; }
+  // Height of a horizontal ground y = h, when the scene has one (the viewer draws it there).
+  virtual std::optional<double> groundHeight() const { return std::nullopt; }
+  // The region the camera frames at the start; by default the masses' bounding box.
+  virtual Bounds reach() const;
 
  protected:
   // ======== physics, for labs ============================================================
@@ -201,13 +199,14 @@ class Simulation : public SceneFrontEnd {
   virtual void afterStep(double dt) { (void)dt; }
   // Called by reset() after the initial state is back: restore the lab's own data.
   virtual void onReset() {}
-  // Called by editModel() after the edit: refresh what the lab derived from the model (the
-  // cloth's copies of its springs for the force pass).
+  // Called by editModel() after the edit, and by markInitialState() once the scene is built:
+  // derive again what the lab keeps from the model (the cloth's fast spring pass).
   virtual void onModelEdited() {}
   // Whether accumulateForces adds force term k of forceTermNames() (false only while the
   // blow-up check's diagnosis leaves it out).
   bool forceTermOn(int k) const { return k != mutedForceTerm_; }
-  // Remember the current state as the one reset() returns to; call at the end of building.
+  // Remember the current state as the one reset() returns to; call at the end of building
+  // (it ends the building: springs change only inside editModel from then on).
   void markInitialState();
   // The user put energy in through the lab's own controls (a dragged collider): the
   // blow-up check takes the new energy as part of the scene's scale.
@@ -219,6 +218,13 @@ class Simulation : public SceneFrontEnd {
   virtual std::vector<Parameter> declareParameters() { return {}; }
 
  private:
+  // The blow-up diagnosis takes the springs away for one evaluation (swapSprings).
+  friend class BlowUpCheck;
+  // Exchange the springs with `other` and let the lab derive again what it keeps.
+  void swapSprings(std::vector<Spring>& other);
+
+  std::vector<Spring> springs_;
+  bool building_ = true;  // editSprings() allowed: the lab builds its scene, or editModel runs
   std::unique_ptr<Integrator> integrator_;
   State initialState_;
   BlowUpCheck blowUpCheck_;

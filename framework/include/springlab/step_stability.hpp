@@ -1,8 +1,10 @@
 #pragma once
 // The stability limit of the step that runs: the largest dt at which the integrator's own
-// one-step map, linearised at the scene's initial state, has spectral radius at most 1.
+// one-step map, linearised at the state the scene settles to, has spectral radius at most 1.
 //
-// No constant per integrator: the map is the scene's real step (Simulation::operate: the
+// The state: where the scene settles (dynamic relaxation from its start, see
+// StepStabilityOptions::settle), since a run blows up near the state it spends its time in;
+// a start far from rest only passes through. No constant per integrator: the map is the scene's real step (Simulation::operate: the
 // integrator, then the lab's after-step corrections), with every force the scene has
 // (spring dampers, air, wind, pressure, contacts active at that state). Its Jacobian J is
 // never assembled; it acts on a perturbation as the difference of two runs, one from the
@@ -17,7 +19,7 @@
 // - Small systems (at most denseBelow free coordinates): one run per coordinate, so X spans
 //   everything and the eigenvalues are J's own (dense, exact up to the finite differences).
 // - Larger ones: runs along the modes that fail first, the stiffest modes of M^-1 K and the
-//   most damped of M^-1 C at the initial state (Lanczos on finite differences of the
+//   most damped of M^-1 C at the settled state (Lanczos on finite differences of the
 //   forces), each as a displacement and as a velocity. For a linear scene with proportional
 //   damping (spring dampers on the springs' pairs, air) this subspace is invariant under the
 //   step and the result is exact; with other damping, contacts or pressure it is the
@@ -45,9 +47,12 @@ struct StepStabilityOptions {
   double tolerance = 2e-3;       // relative width of the final dt bracket
   double largestFactor = 1000.0; // stable up to this times the first guess: unbounded
   double smallestFactor = 1e-4;  // unstable down to this times the first guess: no stable dt
+  bool settle = true;            // linearise at the settled state (false: at the initial state)
+  long settleEvaluations = 400000;  // settling budget: force evaluations x free coordinates
+  long settleSteps = 4000;       // and at most this many steps (at least 100)
 };
 
-// The spectral radius of the scene's linearised step at dt, from its initial state.
+// The spectral radius of the scene's linearised step at dt, at its settled state.
 struct StepSpectrum {
   double radius = 0.0;  // largest |eigenvalue| found
   int steps = 0;        // steps of the scene taken to find it

@@ -3,6 +3,9 @@
 
 #include <springlab/solvers/block_jacobi_cg.hpp>
 
+#include "fast/spring_batches.hpp"
+#include "fast/thread_budget.hpp"
+
 namespace springlab {
 
 void BlockJacobiCG::precondition(const Eigen::VectorXd& in, Eigen::VectorXd& out) const {

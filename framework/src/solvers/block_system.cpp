@@ -5,6 +5,9 @@
 
 #include <springlab/solvers/block_system.hpp>
 
+#include "fast/spring_batches.hpp"
+#include "fast/thread_budget.hpp"
+
 namespace springlab {
 
 void BlockSystem::prepare(const std::vector<char>& free, const ForceJacobian& J) {
@@ -40,7 +43,7 @@ void BlockSystem::prepare(const std::vector<char>& free, const ForceJacobian& J)
     const int ri = row_[static_cast<std::size_t>(i)], rj = row_[static_cast<std::size_t>(j)];
     pairRows_[k] = ri < 0 || rj < 0 || ri == rj ? std::array<int, 2>{-1, -1} : std::array<int, 2>{ri, rj};
   }
-  batches_ = SpringBatches(patternPairs_);
+  batches_ = std::make_shared<const SpringBatches>(patternPairs_);
   diagonal_.resize(static_cast<std::size_t>(blocks));
   coupling_.resize(patternPairs_.size());
   b_.resize(3 * blocks);
@@ -73,8 +76,9 @@ void BlockSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
 #pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
   for (int r = 0; r < blocks; ++r) y.segment<3>(3 * r) = diagonal_[static_cast<std::size_t>(r)] * x.segment<3>(3 * r);
   // Consecutive pairs mostly share their first row: its sum stays in a register until the
-  // row changes (as in the cloth's force pass).
-  batches_.forEachBatch([&](int first, int last) {
+  // row changes (as in the cloth's force pass). (No batches: prepare() has not run, no pairs.)
+  if (!batches_) return;
+  batches_->forEachBatch([&](int first, int last) {
     int pending = -1;
     Vec3 sum = Vec3::Zero();
     for (int k = first; k < last; ++k) {

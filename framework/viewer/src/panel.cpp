@@ -69,6 +69,7 @@ void drawControls(Simulation* sim, const std::vector<std::string>& integratorNam
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 10.0f, 10.0f), ImGuiCond_FirstUseEver, ImVec2(1.0f, 0.0f));
   ImGui::SetNextWindowBgAlpha(0.8f);
+  ImGui::SetNextWindowCollapsed(control.panelCollapsed, ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::End();
     return;

@@ -21,6 +21,7 @@ struct RunControl {
   bool drawMasses = true;
   bool wireframe = false;
   bool springsByKind = false;  // K: structural, shear, bend in their own colours
+  bool panelCollapsed = false;  // the panel starts as its title bar (a small frame in a page)
   // Requests, consumed by the loop in the same frame.
   bool stepRequested = false;
   bool resetRequested = false;

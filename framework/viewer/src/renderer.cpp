@@ -1,7 +1,6 @@
 #include "renderer.hpp"
+#include "gl.hpp"
 #include "to_glm.hpp"
-
-#include <GL/glew.h>
 
 #include <algorithm>
 #include <cmath>
@@ -136,7 +135,7 @@ Renderer::~Renderer() {
 
 bool Renderer::init(std::string& error) {
   for (int shading = 0; shading < 3; ++shading) {
-    const std::string header = "#version 330 core\n#define SHADING " + std::to_string(shading) + "\n";
+    const std::string header = std::string(kGlslVersion) + "#define SHADING " + std::to_string(shading) + "\n";
     const GLuint vs = compile(GL_VERTEX_SHADER, header.c_str(), kVertexShader, error);
     if (!vs) return false;
     const GLuint fs = compile(GL_FRAGMENT_SHADER, header.c_str(), kFragmentShader, error);
@@ -194,7 +193,9 @@ void Renderer::clear(int width, int height) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
-  glEnable(GL_PROGRAM_POINT_SIZE);
+#ifndef SPRINGLAB_GLES3
+  glEnable(GL_PROGRAM_POINT_SIZE);  // (always on in OpenGL ES)
+#endif
 }
 
 void Renderer::draw(unsigned mode, const std::vector<Vertex>& vertices, Shading shading, float pointSize,
@@ -255,7 +256,7 @@ void Renderer::drawShadow(const Simulation& sim, float height, const glm::mat4& 
   };
   std::vector<Vertex>& lines = scratch_[0];
   lines.clear();
-  for (const Spring& s : sim.springs) {
+  for (const Spring& s : sim.springs()) {
     if (s.mass1 < 0 || s.mass2 < 0 || static_cast<std::size_t>(std::max(s.mass1, s.mass2)) >= pos.size()) continue;
     lines.push_back({flat(s.mass1), shade, {}});
     lines.push_back({flat(s.mass2), shade, {}});
@@ -296,20 +297,29 @@ void Renderer::drawSimulation(const Simulation& sim, const std::vector<glm::vec3
     }
     std::vector<Vertex>& tris = scratch_[0];
     tris.clear();
+    auto vertex = [&](int i) { return Vertex{toGlm(pos[i]), glm::mix(cloth, massColors[i], 0.3f), normals[i]}; };
     for (const Triangle& t : sim.triangles) {
       if (!valid(t.a) || !valid(t.b) || !valid(t.c)) continue;
-      for (int i : {t.a, t.b, t.c}) tris.push_back({toGlm(pos[i]), glm::mix(cloth, massColors[i], 0.3f), normals[i]});
+      if (options.surfaceWireframe) {
+        // The wireframe as the triangles' edges (OpenGL ES has no glPolygonMode): a, b; b, c;
+        // c, a. An edge two triangles share is drawn twice, over itself.
+        for (int i : {t.a, t.b, t.b, t.c, t.c, t.a}) tris.push_back(vertex(i));
+      } else {
+        for (int i : {t.a, t.b, t.c}) tris.push_back(vertex(i));
+      }
     }
-    if (options.surfaceWireframe) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    draw(GL_TRIANGLES, tris, options.surfaceWireframe ? Shading::Flat : Shading::Lit, 1.0f, viewProj, eye);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    if (options.surfaceWireframe) {
+      draw(GL_LINES, tris, Shading::Flat, 1.0f, viewProj, eye);
+    } else {
+      draw(GL_TRIANGLES, tris, Shading::Lit, 1.0f, viewProj, eye);
+    }
   }
 
   // Springs, coloured by the average force colour of their ends.
   if (options.springs) {
     std::vector<Vertex>& lines = scratch_[0];
     lines.clear();
-    for (const Spring& s : sim.springs) {
+    for (const Spring& s : sim.springs()) {
       if (!valid(s.mass1) || !valid(s.mass2)) continue;
       const glm::vec3 c = options.springsByKind ? springKindColor(s.kind)
                                                 : 0.5f * (massColors[s.mass1] + massColors[s.mass2]);

@@ -1,6 +1,6 @@
 #include "snapshot.hpp"
 
-#include <GL/glew.h>
+#include "gl.hpp"
 
 #include <algorithm>
 #include <ctime>
@@ -19,16 +19,18 @@ bool writeSnapshot(const std::string& path, int width, int height, std::string& 
   }
   const auto w = static_cast<std::size_t>(width);
   const auto h = static_cast<std::size_t>(height);
-  std::vector<unsigned char> pixels(w * h * 3);
+  // RGBA, the one format OpenGL ES (WebGL2) is sure to read.
+  std::vector<unsigned char> pixels(w * h * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadBuffer(GL_BACK);
-  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
 
-  // OpenGL's rows run bottom-up, PNG's top-down.
-  std::vector<unsigned char> flipped(pixels.size());
+  // OpenGL's rows run bottom-up, PNG's top-down; the alpha channel is left out.
+  std::vector<unsigned char> flipped(w * h * 3);
   for (std::size_t row = 0; row < h; ++row) {
-    std::copy_n(pixels.begin() + static_cast<std::ptrdiff_t>((h - 1 - row) * w * 3), w * 3,
-                flipped.begin() + static_cast<std::ptrdiff_t>(row * w * 3));
+    const unsigned char* from = pixels.data() + (h - 1 - row) * w * 4;
+    unsigned char* to = flipped.data() + row * w * 3;
+    for (std::size_t x = 0; x < w; ++x) std::copy_n(from + 4 * x, 3, to + 3 * x);
   }
   if (!stbi_write_png(path.c_str(), width, height, 3, flipped.data(), width * 3)) {
     error = "could not write " + path;

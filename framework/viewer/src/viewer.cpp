@@ -3,9 +3,12 @@
 // this file ties them to one Simulation and keeps running whatever the simulation throws.
 #include "springlab/viewer.hpp"
 
-#include <GL/glew.h>
-// GLEW before GLFW: GLFW must not pull in the system's gl.h first.
+#include "gl.hpp"
+// The GL header before GLFW: GLFW must not pull in the system's gl.h first.
 #include <GLFW/glfw3.h>
+#ifdef __EMSCRIPTEN__
+#include <emscripten.h>
+#endif
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -22,6 +25,7 @@
 #include <optional>
 #include <string>
 
+#include "springlab/energy_source.hpp"
 #include "springlab/frequency_estimate.hpp"
 
 #include "camera.hpp"
@@ -119,17 +123,50 @@ struct FrameTimes {
   }
 };
 
+// The viewer of this process, for liveViewer(); set while one runs.
+LiveViewer* live = nullptr;
+
 // Everything the window owns; GLFW callbacks find it through the window's user pointer.
-class Viewer {
+class Viewer : public LiveViewer {
  public:
   Viewer(const Registry& registry, Scene scene, const ViewerOptions& options)
       : registry_(registry), options_(options), scene_(std::move(scene)) {
     control_.dt = scene_.settings.dt > 0.0 ? scene_.settings.dt : 0.002;
     control_.substeps = std::max(scene_.settings.substeps, 1);
+    control_.paused = options.paused;
+    control_.panelCollapsed = options.compact;
     missing_ = scene_.missingAtLoad;
   }
+  ~Viewer() override {
+    if (live == this) live = nullptr;
+  }
 
+  // Open the window, run the frames, close. In the browser it returns after the first steps:
+  // the page calls the frames (browserFrame), and the viewer must outlive the call.
   int run();
+
+  // LiveViewer: the page's hook.
+  Simulation* simulation() override { return scene_.sim.get(); }
+  int substeps() const override { return control_.substeps; }
+  double dt() const override { return control_.dt; }
+  std::string integratorName() const override {
+    return scene_.sim ? scene_.sim->integrator().name() : scene_.settings.integrator;
+  }
+  std::string problem() const override {
+    if (missing_) return "exercise " + missing_->id + " (" + missing_->title + ") is not implemented yet; see " +
+                         missing_->handoutSection;
+    return runError_;
+  }
+  void stepFrames(int frames) override {
+    for (int k = 0; k < frames; ++k) {
+      control_.stepRequested = true;
+      advance();
+    }
+  }
+  void setPaused(bool paused) override { control_.paused = paused; }
+  void resize(int width, int height) override {
+    if (window_ && width > 0 && height > 0) glfwSetWindowSize(window_, width, height);
+  }
 
  private:
   enum class Drag { None, Orbit, Zoom, Pan, Grab, MoveShape };
@@ -142,6 +179,15 @@ class Viewer {
 
   bool openWindow();
   void closeWindow();
+  // run() in three parts: the window and the GUI made (0, or the exit code); one frame with
+  // `physicsFrames` frames of physics (false after the last of a --frames run); the report of
+  // a --frames run, the window closed (the exit code).
+  int start();
+  bool frame(int physicsFrames);
+#ifdef __EMSCRIPTEN__
+  void browserFrame();
+#endif
+  int finish();
   viewer::Ray cursorRay() const;
   std::optional<int> pickUnderCursor() const;
 
@@ -156,7 +202,7 @@ class Viewer {
   void guarded(F&& f);
 
   const Registry& registry_;
-  const ViewerOptions& options_;
+  const ViewerOptions options_;
   Scene scene_;
   RunControl control_;
   Camera camera_;
@@ -170,6 +216,12 @@ class Viewer {
   std::optional<MissingExercise> missing_;
   std::string runErrorHeadline_;
   std::string runError_;  // empty while the run is fine
+  bool blewUp_ = false;   // the run stopped on a blow-up (a headless run then exits 4, as `sim`)
+  // A force term that feeds energy in (energySourceWarning), tested every kEnergyCheckFrames
+  // stepped frames and named once on the terminal.
+  static constexpr long kEnergyCheckFrames = 60;
+  long steppedFrames_ = 0;
+  bool energyWarned_ = false;
   std::optional<double> maxAngularFrequency_;  // rad/s, cached Lanczos estimate for the dt warning
   // The HUD's energies and observables, and the simulated time and wall time they are of.
   struct HudNumbers {
@@ -195,6 +247,11 @@ class Viewer {
   // over the whole run for --frames (total_, from the end of the first frame).
   viewer::FrameRate rate_;
   FrameTimes recent_, total_;
+  int frameNumber_ = 0;
+  std::chrono::steady_clock::time_point frameStart_;
+  int exitCode_ = 0;
+  double browserTime_ = -1.0;   // s, the page's clock at the last frame
+  double browserBacklog_ = 0.0;  // s of wall time the physics has not caught up with yet
 };
 
 template <class F>
@@ -207,6 +264,7 @@ void Viewer::guarded(F&& f) {
     missing_ = missingFrom(e);
   } catch (const BlowUp& e) {
     control_.paused = true;
+    blewUp_ = true;
     runErrorHeadline_ = "Paused";
     runError_ = e.what();
     std::cerr << "springlab view: " << e.what() << "\n";
@@ -222,9 +280,16 @@ bool Viewer::openWindow() {
   // OpenGL 3.3 core, with 4x multisampling where the GPU does it in hardware.
   glfwSetErrorCallback([](int, const char* description) { std::cerr << "glfw: " << description << "\n"; });
   if (!glfwInit()) return false;
+#ifdef SPRINGLAB_GLES3
+  // OpenGL ES 3.0: WebGL2 in the browser.
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+#else
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+#endif
 #ifdef __APPLE__
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
 #endif
@@ -248,8 +313,11 @@ bool Viewer::openWindow() {
     return false;
   }
   glfwShowWindow(window_);
-  // Interactive runs follow the display; --frames runs as fast as it can.
+#ifndef __EMSCRIPTEN__
+  // Interactive runs follow the display; --frames runs as fast as it can. (The browser
+  // always follows the display: requestAnimationFrame.)
   glfwSwapInterval(options_.frames > 0 ? 0 : 1);
+#endif
   return true;
 }
 
@@ -267,11 +335,26 @@ void Viewer::closeWindow() {
 }
 
 int Viewer::run() {
+  if (const int code = start()) return code;
+  live = this;
+#ifdef __EMSCRIPTEN__
+  // The page calls the frames from requestAnimationFrame; this returns at once.
+  emscripten_set_main_loop_arg([](void* self) { static_cast<Viewer*>(self)->browserFrame(); }, this, 0, false);
+  return 0;
+#else
+  while (!glfwWindowShouldClose(window_) && frame(1)) {
+  }
+  return finish();
+#endif
+}
+
+int Viewer::start() {
   if (!openWindow()) {
     std::cerr << "springlab view: no display: run under xvfb-run, or use `./springlab run` which does it for you\n";
     return 6;
   }
 
+#ifndef SPRINGLAB_GLES3
   glewExperimental = GL_TRUE;
   const GLenum glewStatus = glewInit();
   if (glewStatus != GLEW_OK) {
@@ -282,6 +365,7 @@ int Viewer::run() {
   }
   while (glGetError() != GL_NO_ERROR) {
   }  // glewInit may leave an error behind in a core context
+#endif
 
   renderer_ = std::make_unique<viewer::Renderer>();
   std::string error;
@@ -304,7 +388,11 @@ int Viewer::run() {
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the student's folder
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(window_, true);
+#ifdef SPRINGLAB_GLES3
+  ImGui_ImplOpenGL3_Init("#version 300 es");
+#else
   ImGui_ImplOpenGL3_Init("#version 330 core");
+#endif
   imguiReady_ = true;
 
   // Frame the region the scene can reach, in the part of the window between the HUD (top
@@ -318,62 +406,86 @@ int Viewer::run() {
   const float freeLeft = std::min(250.0f / w, 0.25f), freeRight = std::max(1.0f - 300.0f / w, 0.75f);
   camera_.frame(framing_.lo, framing_.hi, w / static_cast<float>(std::max(height, 1)), freeLeft, freeRight);
 
+  frameStart_ = std::chrono::steady_clock::now();
+  return 0;
+}
+
+bool Viewer::frame(int physicsFrames) {
   using Clock = std::chrono::steady_clock;
   auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
-  int exitCode = 0;
-  Clock::time_point frameStart = Clock::now();
-  for (int frame = 1; !glfwWindowShouldClose(window_); ++frame) {
-    glfwPollEvents();
-    interact();
-    // Draw the state, then step it while the picture is being made: glFlush hands the frame
-    // to the GPU, or to llvmpipe's threads under Xvfb, which render it while this thread runs
-    // the physics (on two cores that took the cloth from about 67 to 80-100 frames/s). What a
-    // frame's input does is so seen one frame later.
-    const bool last = options_.frames > 0 && frame >= options_.frames;
-    draw(last);
-    glFlush();
-    const Clock::time_point physicsStart = Clock::now();
-    advance();
-    const double physics = seconds(Clock::now() - physicsStart);
+  const int number = ++frameNumber_;
+  int width = 0, height = 0;
+  std::string error;
+  glfwPollEvents();
+  interact();
+  // Draw the state, then step it while the picture is being made: glFlush hands the frame
+  // to the GPU, or to llvmpipe's threads under Xvfb, which render it while this thread runs
+  // the physics (on two cores that took the cloth from about 67 to 80-100 frames/s). What a
+  // frame's input does is so seen one frame later.
+  const bool last = options_.frames > 0 && number >= options_.frames;
+  draw(last);
+  glFlush();
+  const Clock::time_point physicsStart = Clock::now();
+  for (int k = 0; k < physicsFrames; ++k) advance();
+  const double physics = seconds(Clock::now() - physicsStart);
 
-    // The picture is complete (scene and GUI) in the back buffer: save it before the swap.
-    const Clock::time_point savingStart = Clock::now();
-    glfwGetFramebufferSize(window_, &width, &height);
-    if (control_.screenshotRequested) {
-      control_.screenshotRequested = false;
-      const std::string name = viewer::screenshotName();
-      if (viewer::writeSnapshot(name, width, height, error)) {
-        std::cout << "screenshot: " << std::filesystem::absolute(name).string() << std::endl;
-      } else {
-        std::cerr << "springlab view: " << error << "\n";
-      }
+  // The picture is complete (scene and GUI) in the back buffer: save it before the swap.
+  const Clock::time_point savingStart = Clock::now();
+  glfwGetFramebufferSize(window_, &width, &height);
+  if (control_.screenshotRequested) {
+    control_.screenshotRequested = false;
+    const std::string name = viewer::screenshotName();
+    if (viewer::writeSnapshot(name, width, height, error)) {
+      std::cout << "screenshot: " << std::filesystem::absolute(name).string() << std::endl;
+    } else {
+      std::cerr << "springlab view: " << error << "\n";
     }
-    if (last && !options_.snapshot.empty()) {
-      if (viewer::writeSnapshot(options_.snapshot, width, height, error)) {
-        std::cout << "snapshot: " << options_.snapshot << std::endl;
-      } else {
-        std::cerr << "springlab view: " << error << "\n";
-        exitCode = 5;
-      }
-    }
-    const double saving = seconds(Clock::now() - savingStart);
-    glfwSwapBuffers(window_);
-
-    // The frame's time, from the end of the previous frame (so it includes waiting for the
-    // display), split into the physics and the rest (input, drawing, GUI, and the wait at the
-    // swap for the part of the picture not made while the physics ran); writing PNGs is left
-    // out.
-    const Clock::time_point now = Clock::now();
-    const double elapsed = seconds(now - frameStart) - saving;
-    frameStart = now;
-    recent_.add(elapsed, physics);
-    if (frame > 1) total_.add(elapsed, physics);  // the first frame compiles shaders
-    if (recent_.seconds >= 0.5) {
-      rate_ = recent_.rate();
-      recent_ = FrameTimes{};
-    }
-    if (last) break;
   }
+  if (last && !options_.snapshot.empty()) {
+    if (viewer::writeSnapshot(options_.snapshot, width, height, error)) {
+      std::cout << "snapshot: " << options_.snapshot << std::endl;
+    } else {
+      std::cerr << "springlab view: " << error << "\n";
+      exitCode_ = 5;
+    }
+  }
+  const double saving = seconds(Clock::now() - savingStart);
+  glfwSwapBuffers(window_);
+
+  // The frame's time, from the end of the previous frame (so it includes waiting for the
+  // display), split into the physics and the rest (input, drawing, GUI, and the wait at the
+  // swap for the part of the picture not made while the physics ran); writing PNGs is left
+  // out.
+  const Clock::time_point now = Clock::now();
+  const double elapsed = seconds(now - frameStart_) - saving;
+  frameStart_ = now;
+  recent_.add(elapsed, physics);
+  if (number > 1) total_.add(elapsed, physics);  // the first frame compiles shaders
+  if (recent_.seconds >= 0.5) {
+    rate_ = recent_.rate();
+    recent_ = FrameTimes{};
+  }
+  return !last;
+}
+
+#ifdef __EMSCRIPTEN__
+// requestAnimationFrame follows the display (60, 120, 144 Hz): the physics runs one viewer
+// frame (its substeps) per 1/60 s of wall time, whatever the display's rate, and at most four
+// per picture, so a page slower than the physics slows down instead of falling behind.
+void Viewer::browserFrame() {
+  constexpr double kFrameSeconds = 1.0 / 60.0;
+  const double now = emscripten_get_now() / 1e3;
+  if (browserTime_ < 0.0) browserTime_ = now - kFrameSeconds;
+  browserBacklog_ = std::min(browserBacklog_ + (now - browserTime_), 4.0 * kFrameSeconds);
+  browserTime_ = now;
+  int physicsFrames = 0;
+  for (; browserBacklog_ >= kFrameSeconds; browserBacklog_ -= kFrameSeconds) ++physicsFrames;
+  frame(physicsFrames);
+}
+#endif
+
+int Viewer::finish() {
+  int exitCode = exitCode_;
   if (options_.frames > 0) {
     // What the last frame's panel showed of its labels (the viewer tests read this line).
     if (control_.cutLabels.empty()) {
@@ -395,6 +507,8 @@ int Viewer::run() {
               << ") is not implemented yet; see " << missing_->handoutSection << "\n";
     exitCode = 3;
   }
+  // ... and 4 after a blow-up (the message is above, and on the snapshot's panel).
+  if (options_.frames > 0 && exitCode == 0 && blewUp_) exitCode = 4;
   return exitCode;
 }
 
@@ -583,6 +697,12 @@ void Viewer::advance() {
     }
     if (grabbing) grabFrom_ = grabTarget_;
     if (moving) shapeFrom_ = shapeTarget_;
+    if (!energyWarned_ && ++steppedFrames_ % kEnergyCheckFrames == 0) {
+      if (const auto warning = energySourceWarning(*sim)) {
+        std::cerr << "springlab view: warning: " << *warning << "\n";
+        energyWarned_ = true;
+      }
+    }
   });
 }
 
@@ -678,6 +798,8 @@ void Viewer::drawGui(bool last) {
 
 }  // namespace
 
+LiveViewer* liveViewer() { return live; }
+
 int runViewer(const Registry& registry, const std::string& scenePath, const ViewerOptions& options) {
   // Load before opening a window: a bad scene file is an error on the terminal (exit 2);
   // a missing exercise while building still opens the window and says which one.
@@ -706,8 +828,15 @@ int runViewer(const Registry& registry, const std::string& scenePath, const View
     }
   }
 
+#ifdef __EMSCRIPTEN__
+  // The page calls its frames after this returns: the viewer lives as long as the page.
+  static std::unique_ptr<Viewer> viewer;
+  viewer = std::make_unique<Viewer>(registry, std::move(scene), options);
+  return viewer->run();
+#else
   Viewer viewer(registry, std::move(scene), options);
   return viewer.run();
+#endif
 }
 
 }  // namespace springlab

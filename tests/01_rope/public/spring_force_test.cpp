@@ -3,11 +3,14 @@
 
 #include <springlab/rope/rope.hpp>
 #include "seeded.hpp"
+#include "rope_fixtures.hpp"
 
 namespace springlab::rope {
 namespace {
 
 using SpringForce = springlab::testing::Seeded;
+using springlab::testing::quietRope;
+using RopeDynamics = springlab::testing::Seeded;
 
 TEST_F(SpringForce, IsZeroAtRestLengthWithoutRelativeMotion) {
   const Vec3 x2 = vec3(-1, 1);
@@ -66,6 +69,26 @@ TEST_F(SpringForce, ZeroLengthSpringExertsNoForce) {
   const Vec3 f = springDamperForce(x, x, vec3(-1, 1), vec3(-1, 1), 100.0, 0.5, 1.0);
   EXPECT_TRUE(f.allFinite()) << "two ends at the same point give a NaN force: guard l == 0";
   EXPECT_EQ(f, Vec3::Zero()) << "a spring of zero length has no direction; it must exert no force";
+}
+
+TEST_F(RopeDynamics, InternalForcesConserveMomentum) {
+  // Without gravity, air and ground, forces are spring forces only: they sum to zero.
+  RopeParameters p = quietRope(integer(3, 30), 0.05, uniform(10, 1e4), 0.1, uniform(0, 1));
+  Rope rope(3, p);
+  for (int i = 0; i < rope.numOfMasses(); ++i) {
+    rope.state.pos[i] += vec3(-0.05, 0.05);
+    rope.state.vel[i] = vec3(-1, 1);
+  }
+  rope.init();
+  rope.solve();
+  Vec3 total = Vec3::Zero();
+  double scale = 0;
+  for (const Vec3& f : rope.force) {
+    total += f;
+    scale += f.norm();
+  }
+  EXPECT_LT(total.norm(), 1e-9 * std::max(1.0, scale))
+      << "the rope's internal forces must sum to zero (momentum is conserved) " << seedText();
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ class MassOnConstraint final : public Simulation {
  public:
   MassOnConstraint(double m, double k, double L0) : Simulation(3) {
     masses = {Mass{m, true}, Mass{m, false}};
-    springs = {Spring{1, 0, k, L0, 0.0, SpringKind::Structural}};
+    editSprings() = {Spring{1, 0, k, L0, 0.0, SpringKind::Structural}};
     state.pos = {Vec3::Zero(), Vec3(L0, 0, 0)};
     state.vel = {Vec3::Zero(), Vec3::Zero()};
     markInitialState();
@@ -35,7 +35,7 @@ class MassOnConstraint final : public Simulation {
 
  protected:
   void accumulateForces(const State& s, std::vector<Vec3>& f) override {
-    const Spring& sp = springs[0];
+    const Spring& sp = springs()[0];
     f[1] += springDamperForce(s.pos[1], s.pos[0], s.vel[1], s.vel[0], sp.springConstant, sp.springLength, 0.0);
     f[1] += masses[1].m * gravitation;
   }

@@ -2,6 +2,7 @@
 // General solver code: the 3x3-block linear system of an implicit step. Any lab whose
 // simulation provides force Jacobians can fill one (Lab 2's implicit Euler does).
 #include <array>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -9,9 +10,10 @@
 
 #include <springlab/force_jacobian.hpp>
 #include <springlab/math.hpp>
-#include <springlab/spring_batches.hpp>
 
 namespace springlab {
+
+class SpringBatches;  // the pairs split for threads (the framework's internal src/fast/)
 
 // ---- The linear system of one implicit step ------------------------------------------
 // A = M - dt dF/dv - dt^2 dF/dx and b over the free masses, in 3x3 blocks: one block per
@@ -76,7 +78,7 @@ class BlockSystem {
   std::vector<Mat3> diagonal_;               // [free masses] A_rr
   std::vector<Mat3> coupling_;               // [p] A_ij = A_ji of pair k
   std::vector<std::array<int, 2>> pairRows_; // [p] first rows of pair k's ends; -1: the pair is ignored
-  SpringBatches batches_;                    // the pairs split for threads
+  std::shared_ptr<const SpringBatches> batches_;  // the pairs split for threads
   std::vector<char> patternFree_;            // what the layout was built for
   std::vector<std::array<int, 2>> patternPairs_;
   int layoutVersion_ = 0;

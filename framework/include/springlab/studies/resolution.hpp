@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "springlab/studies/progress.hpp"
 #include "springlab/studies/run.hpp"
 
 namespace springlab::studies {
@@ -21,11 +22,13 @@ struct ResolutionOptions {
   double tolerance = 0.01;       // relative
   double duration = 2.0;         // s
   int samples = 40;
-  std::vector<int> resolutions;  // empty: the scene's value x 2^-3 .. x 2
+  std::vector<int> resolutions;  // empty: the scene's value x 2^-3 .. x 2^finerSteps
+  int finerSteps = 1;            // doublings above the scene's value (advise: 0)
   std::string integrator;        // empty: the scene's
   int repeats = 3;               // timed runs after the first (the median wall time is reported)
   int threads = 0;
   bool progress = true;
+  RunProgress* runProgress = nullptr;  // a line per finished run (advise's), when given
 };
 
 struct ResolutionRow {
@@ -63,8 +66,9 @@ struct AdviseOptions {
   int samples = 40;
   std::vector<std::string> integrators;  // empty: every registered one
   std::vector<int> resolutions;
-  int levels = 8;           // dt values tried per integrator, halving from about RK4's limit;
-                            // the RK4 reference runs one halving below the last
+  int levels = 4;           // dt values tried per integrator, halving from about RK4's limit
+                            // (methods stable at any dt start at the frame length); the RK4
+                            // reference halves from half that limit until it converges
   int threads = 0;
   bool progress = true;
 };
@@ -82,6 +86,7 @@ struct Advice {
   int chosenResolution = 0;
   std::vector<Candidate> candidates;
   int best = -1;               // index into candidates
+  double referenceDt = 0.0;    // s, the converged RK4 reference's step
   nlohmann::json snippet;      // the keys to paste into the scene
 };
 

@@ -54,10 +54,12 @@ double defaultStabilityDuration(double maxAngularFrequency);
 double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                               double predicted, double atLeast);
 
-// Largest stable dt of one integrator, bisection from a first guess.
+// Largest stable dt of one integrator, bisection from a first guess. With swingDt > 0 (half
+// the predicted limit) each trial's passivity detector allows the integrator's energy swing
+// measured at swingDt (RunSpec::swingDt).
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                       double duration, double firstGuess, double tolerance = 0.005, long maxSteps = 4000000,
-                      double stiffnessScale = 1.0);
+                      double stiffnessScale = 1.0, double swingDt = 0.0);
 
 Stability stability(const Registry& registry, const SceneDocument& scene, const StabilityOptions& options);
 

@@ -15,7 +15,7 @@ namespace springlab::net {
 inline void externalForces(Simulation& sim, std::vector<Vec3>& f) {
   sim.evaluateForces(sim.state, f);
   const State& s = sim.state;
-  for (const Spring& sp : sim.springs) {
+  for (const Spring& sp : sim.springs()) {
     const Vec3 f1 = springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
                                       sp.springConstant, sp.springLength, sp.frictionConstant);
     f[sp.mass1] -= f1;

@@ -93,8 +93,9 @@ class ImplicitEuler final : public Integrator {
 
 // Linearised backward Euler keeping each mass's own 3x3 block only (exercise 2.9): one
 // block-Jacobi sweep of implicit Euler's system from dv = 0, each mass solved against its
-// neighbours' old velocities. On light fabric that is far stiffer than the system it
-// approximates (the 5 s drape on net_hanging.json: 0.20 m against 1.02 m). With the scene's
+// neighbours' old velocities. On light fabric at the scene's dt that is past its stable step:
+// the cloth of net_hanging.json gains energy and never comes to rest (handouts/02_net.md, 2.f,
+// gives the command that shows it). With the scene's
 // "solver": {"block_sweeps": N, "block_tolerance": t} it sweeps on (given code) towards the
 // full solve: dv_i = D_i^-1 (b_i + sum over its springs of C dv_j), until the residual
 // relative to |b| is below t or after N sweeps; each sweep after the first counts as a solver

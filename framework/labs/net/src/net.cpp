@@ -2,15 +2,11 @@
 // linearises them with 2.7 and corrects each step with 2.5, 2.6 and 2.10.
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <string>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
-#include <springlab/loop_exceptions.hpp>
 #include <springlab/net/net.hpp>
+
+#include "fast_spring_forces.hpp"
 
 namespace springlab::net {
 
@@ -18,23 +14,24 @@ namespace {
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 // Gauss-Seidel passes of stretch limiting per step, after the tethers: they only fix the
 // local strain the tethers leave (a pass moves a correction about one spring, so more passes
-// would not reach far either; see handouts/02_net.md, section 2.4).
+// would not reach far either; see handouts/02_net.md, section 2.d).
 constexpr int kStretchPasses = 2;
 // The tethers hold each mass within (1 + kTetherShare x max stretch) of its rest distance from
 // each pin, not the full max stretch: between two pins, the spheres around them let the edge
 // run (1 + tether stretch)^2 as long sideways, plus its sag (21 % and more at 10 %), and
 // the two passes cannot take that back along the edge. With an eighth of the allowance the
 // largest structural strain after 5 s is 0.103 on the thesis cloth at r = 64 (a quarter:
-// 0.129, the whole: 0.248; handouts/02_net.md, section 2.4).
+// 0.129, the whole: 0.248; handouts/02_net.md, section 2.d).
 constexpr double kTetherShare = 1.0 / 8.0;
 
 }  // namespace
 
-Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
+Net::Net(int dim, const NetParameters& p)
+    : Simulation(dim), settings(p), fastSprings_(std::make_unique<FastSpringForces>()) {
   // The grid of exercise 2.1 is the initial state.
   NetLayout layout = buildNet(p);
   masses = std::move(layout.masses);
-  springs = std::move(layout.springs);
+  editSprings() = std::move(layout.springs);
   triangles = std::move(layout.triangles);
   state.pos = std::move(layout.pos);
   state.vel = std::move(layout.vel);
@@ -57,151 +54,27 @@ Net::Net(int dim, const NetParameters& p) : Simulation(dim), settings(p) {
   markInitialState();
 }
 
-namespace {
+Net::~Net() = default;
 
-// One run of springs (springlab/spring_families.hpp): mass t to mass t + d of the arrays
-// given, which start at the run's first mass, with the spring's k, L0 and kd at t. Its ends,
-// velocities and parameters are contiguous arrays of doubles, so this loop vectorises where
-// the exercise is inlined (the reference, built as one unit): four springs per sqrt and
-// division instruction with AVX2, every operand one load. (Every pointer is restrict and each
-// operand is read into a local before the call: without either, GCC 12 does not vectorise it.)
-[[gnu::always_inline]] inline void runOfSprings(const double* __restrict x, const double* __restrict y,
-                                                const double* __restrict z, const double* __restrict vx,
-                                                const double* __restrict vy, const double* __restrict vz,
-                                                const double* __restrict k, const double* __restrict restLength,
-                                                const double* __restrict kd, Vec3* __restrict out, int count, int d) {
-  for (int t = 0; t < count; ++t) {
-    const double x1 = x[t], y1 = y[t], z1 = z[t], x2 = x[t + d], y2 = y[t + d], z2 = z[t + d];
-    const double u1 = vx[t], v1 = vy[t], w1 = vz[t], u2 = vx[t + d], v2 = vy[t + d], w2 = vz[t + d];
-    const double stiffness = k[t], length = restLength[t], damping = kd[t];
-    out[t] = springDamperForce(Vec3(x1, y1, z1), Vec3(x2, y2, z2), Vec3(u1, v1, w1), Vec3(u2, v2, w2), stiffness,
-                               length, damping);
-  }
-}
-
-// The same loop for the machine's baseline and (GCC on x86-64) for AVX2: no FMA, the same
-// operations in the same order, so the same bits (test SpringFamilies.Avx2AndBaselineLoopsGiveTheSameBits).
-using RunFunction = void (*)(const double*, const double*, const double*, const double*, const double*,
-                             const double*, const double*, const double*, const double*, Vec3*, int, int);
-
-// (restrict on these functions' own parameters: the inlined loop's alone does not survive.)
-#define SPRINGLAB_RUN_PARAMETERS                                                                              \
-  const double* __restrict x, const double* __restrict y, const double* __restrict z, const double* __restrict vx, \
-      const double* __restrict vy, const double* __restrict vz, const double* __restrict k,                        \
-      const double* __restrict restLength, const double* __restrict kd, Vec3* __restrict out, int count, int d
-[[gnu::flatten]] void runOfSpringsPortable(SPRINGLAB_RUN_PARAMETERS) {
-  runOfSprings(x, y, z, vx, vy, vz, k, restLength, kd, out, count, d);
-}
-
-#if SPRINGLAB_AVX2_VARIANT
-[[gnu::flatten]] SPRINGLAB_TARGET_AVX2 void runOfSpringsAvx2(SPRINGLAB_RUN_PARAMETERS) {
-  runOfSprings(x, y, z, vx, vy, vz, k, restLength, kd, out, count, d);
-}
-#endif
-#undef SPRINGLAB_RUN_PARAMETERS
-
-// The runs [firstRun, lastRun) of the families (their load()ed state) into their buffers.
-void runSpringForces(const SpringFamilies& families, int firstRun, int lastRun, Vec3* const* buffers) {
-#if SPRINGLAB_AVX2_VARIANT
-  const RunFunction runOf = useAvx2() ? runOfSpringsAvx2 : runOfSpringsPortable;
-#else
-  const RunFunction runOf = runOfSpringsPortable;
-#endif
-  const double* x[6];
-  for (int c = 0; c < 6; ++c) x[c] = families.loaded(c);
-  const SpringFamilies::Run* runs = families.runs().data();
-  for (int r = firstRun; r < lastRun; ++r) {
-    const SpringFamilies::Run& run = runs[r];
-    const int i = run.first, at = run.spring;
-    runOf(x[0] + i, x[1] + i, x[2] + i, x[3] + i, x[4] + i, x[5] + i, families.stiffness() + at,
-          families.restLength() + at, families.damping() + at, buffers[run.family] + i, run.count,
-          families.offset(run.family));
-  }
-}
-
-// f_i += m_i (g - c v_i) for the masses [begin, end), on the doubles of the packed Vec3s
-// (restrict: the compiler vectorises it; through Vec3 and std::vector it did not).
-void addGravityAndAir(const Mass* __restrict masses, const double* __restrict v, double* __restrict f,
-                      const Vec3& gravity, double airFriction, int begin, int end) {
-  const double g[3] = {gravity.x(), gravity.y(), gravity.z()};
-  for (int i = begin; i < end; ++i) {
-    const double m = masses[i].m;
-    for (int c = 0; c < 3; ++c) f[3 * i + c] += m * (g[c] - airFriction * v[3 * i + c]);
-  }
-}
-
-}  // namespace
-
-void Net::familySpringForces(const State& s) {
-  families_.load(s.pos, s.vel);
-  Vec3* buffers[SpringFamilies::kMaxFamilies];
-  for (int q = 0; q < families_.families(); ++q) buffers[q] = families_.forces(q);
-  const int count = static_cast<int>(families_.runs().size());
-  const int threads = springs.size() >= static_cast<std::size_t>(kParallelSprings) ? threadBudget() : 1;
-  if (threads <= 1) {
-    runSpringForces(families_, 0, count, buffers);
-    return;
-  }
-  // Each thread a share of the runs; springDamperForce may throw (a missing exercise 2.2):
-  // carried out of the parallel region.
-  LoopExceptions exceptions;
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (int t = 0; t < threads; ++t) {
-    exceptions.run([&] { runSpringForces(families_, count * t / threads, count * (t + 1) / threads, buffers); });
-  }
-  exceptions.rethrow();
-}
-
-void Net::onModelEdited() {
-  // The force pass's copies of the springs (k, L0, kd) follow the edit; a list rewired,
-  // reordered or resized is sorted again.
-  if (!families_.fits(springs, numOfMasses()) || !families_.refresh(springs)) {
-    families_ = SpringFamilies(springs, numOfMasses());
-  }
-}
-
-// Both loops below run once per spring per step: `flatten` inlines the exercises they call
-// where the compiler sees them (the reference is built as one unit). The force pass sorts the
-// springs into families (springlab/spring_families.hpp): its sums do not depend on the list's
-// order or the thread count; they differ from a plain loop over the list in round-off only.
 std::vector<std::string> Net::forceTermNames() const {
   return {"spring forces (exercise 2.2, springDamperForce)", "gravity and air friction",
           "wind (exercises 2.3 and 2.4, vertexNormals and windForce)"};
 }
 
-[[gnu::flatten]] void Net::accumulateForces(const State& s, std::vector<Vec3>& f) {
-  // Springs: equal and opposite on their ends (exercise 2.2), family by family
-  // (springlab/spring_families.hpp), then the springs no family takes.
-  if (forceTermOn(kSprings)) {
-    if (!families_.fits(springs, numOfMasses())) {
-      // A new spring list (or one grown or shrunk): sort it.
-      families_ = SpringFamilies(springs, numOfMasses());
-    } else if (const int k = families_.check(springs); k >= 0) {
-      // A spring changed in place behind editModel's back: its copy is stale.
-      throw std::logic_error("springs[" + std::to_string(k) +
-                             "] changed without Simulation::editModel: the cloth's force pass works from copies of "
-                             "the springs made when they were last edited; change springs inside "
-                             "sim.editModel([&](Simulation& model) { ... })");
-    }
-    familySpringForces(s);
-    families_.gather(f);
-    for (const int k : families_.leftovers()) {
-      const Spring& sp = springs[static_cast<std::size_t>(k)];
+void Net::accumulateForces(const State& s, std::vector<Vec3>& f) {
+  // Springs: equal and opposite on their two ends (exercise 2.2). A grid's springs take the
+  // framework's fast pass (fast_spring_forces.cpp): the same forces, summed in another order.
+  if (forceTermOn(kSprings) && !fastSprings_->addSpringForces(s, springs(), f)) {
+    for (const Spring& sp : springs()) {
       const Vec3 f1 = springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
                                         sp.springConstant, sp.springLength, sp.frictionConstant);
       f[sp.mass1] += f1;
       f[sp.mass2] -= f1;
     }
   }
-  // Gravity and air friction on each mass.
-  const int n = numOfMasses();
+  // Gravity and air friction on each mass: m (g - c v).
   if (forceTermOn(kGravityAndAir)) {
-    const int threads = n > kParallelMasses ? threadBudget() : 1;
-#pragma omp parallel for schedule(static) if (threads > 1) num_threads(threads)
-    for (int t = 0; t < threads; ++t) {
-      addGravityAndAir(masses.data(), s.vel.front().data(), f.front().data(), gravitation, settings.airFriction,
-                       n * t / threads, n * (t + 1) / threads);
-    }
+    for (int i = 0; i < numOfMasses(); ++i) f[i] += masses[i].m * (gravitation - settings.airFriction * s.vel[i]);
   }
   // Wind on the surface, through each mass's normal and area (exercises 2.3 and 2.4).
   const Wind& w = settings.wind;
@@ -215,48 +88,20 @@ std::vector<std::string> Net::forceTermNames() const {
   }
 }
 
-[[gnu::flatten]] bool Net::addForceJacobian(const State& s, ForceJacobian& J) {
-  // Springs (exercise 2.7), in the order of `springs`; the wind stays explicit.
-  const int count = static_cast<int>(springs.size());
-  const int budget = count > kParallelSprings ? threadBudget() : 1;
-  // One thread: each pair written once, appended (the vector keeps its capacity across steps).
-  // resize() would first write every pair's ends, a pass over all 152 bytes of each (3.6 MB at
-  // r = 64, 5 % of the thesis frame).
-  if (budget <= 1) {
-    J.pairs.reserve(springs.size());
-    for (const Spring& sp : springs) {
+void Net::onModelEdited() {
+  // The fast pass keeps its own copies of the springs: they follow the edit.
+  fastSprings_->modelEdited(springs(), numOfMasses());
+}
+
+bool Net::addForceJacobian(const State& s, ForceJacobian& J) {
+  // Springs (exercise 2.7), in the order of springs(); a large net takes the fast pass's
+  // threads. The wind stays explicit.
+  if (!fastSprings_->addSpringJacobians(s, springs(), J)) {
+    for (const Spring& sp : springs()) {
       const SpringJacobian sj =
           springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant, sp.springLength, sp.frictionConstant);
       J.pairs.emplace_back(sp.mass1, sp.mass2, sj.dx, sj.dv);
     }
-  } else {
-    // Threads: each pair's blocks written once (resize leaves them unset), by whichever thread
-    // computes it. Each thread takes one contiguous block of springs (as schedule(static)
-    // would) inside one try: a missing exercise 2.7 reaches the caller instead of
-    // std::terminate, and the loop stays as tight as a plain one (a handler per spring or per
-    // chunk cost 35-45 % more instructions in this loop).
-    J.pairs.resize(springs.size());
-    LoopExceptions exceptions;
-#pragma omp parallel num_threads(budget)
-    {
-      int first = 0, last = count;
-#ifdef _OPENMP
-      const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
-      first = static_cast<int>(static_cast<long>(count) * thread / threads);
-      last = static_cast<int>(static_cast<long>(count) * (thread + 1) / threads);
-#endif
-      try {
-        for (int k = first; k < last; ++k) {
-          const Spring& sp = springs[static_cast<std::size_t>(k)];
-          const SpringJacobian sj = springJacobian(s.pos[sp.mass1], s.pos[sp.mass2], sp.springConstant,
-                                                   sp.springLength, sp.frictionConstant);
-          J.pairs[static_cast<std::size_t>(k)] = ForceJacobian::Pair(sp.mass1, sp.mass2, sj.dx, sj.dv);
-        }
-      } catch (...) {
-        exceptions.capture();
-      }
-    }
-    exceptions.rethrow();
   }
   // Air friction, -c m v on each mass.
   if (settings.airFriction > 0.0) {
@@ -282,7 +127,7 @@ void Net::afterStep(double dt) {
   if (settings.stretchLimiting) {
     const PhaseProfile::Scope phase(profile, Phase::kStretchLimit);
     tethers_.apply(state.pos, state.vel, inverseMass_, kTetherShare * settings.maxStretch, dt);
-    limitStretch(state.pos, state.vel, springs, inverseMass_, settings.maxStretch, dt, kStretchPasses);
+    limitStretch(state.pos, state.vel, springs(), inverseMass_, settings.maxStretch, dt, kStretchPasses);
   }
   if (settings.selfCollision) {
     const PhaseProfile::Scope phase(profile, Phase::kCollisions);
@@ -403,7 +248,7 @@ std::vector<Observable> Net::observables() const {
   double lowest = INFINITY;
   for (const Vec3& x : state.pos) lowest = std::min(lowest, x.y());
   double strain = 0.0;
-  for (const Spring& s : springs) {
+  for (const Spring& s : springs()) {
     if (s.springLength > 0.0) {
       strain = std::max(strain, (state.pos[s.mass1] - state.pos[s.mass2]).norm() / s.springLength - 1.0);
     }
@@ -444,7 +289,7 @@ std::vector<Parameter> Net::declareParameters() {
     return Parameter{label, "N/m", [this, kind] { return settings.springs[kind].stiffness; },
                      [this, kind](double k) {
                        settings.springs[kind].stiffness = k;
-                       for (Spring& s : springs) {
+                       for (Spring& s : editSprings()) {
                          if (s.kind == kind) s.springConstant = k;
                        }
                      },
@@ -454,7 +299,7 @@ std::vector<Parameter> Net::declareParameters() {
     return Parameter{label, "N s/m", [this, kind] { return settings.springs[kind].damping; },
                      [this, kind](double kd) {
                        settings.springs[kind].damping = kd;
-                       for (Spring& s : springs) {
+                       for (Spring& s : editSprings()) {
                          if (s.kind == kind) s.frictionConstant = kd;
                        }
                      },

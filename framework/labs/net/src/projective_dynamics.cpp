@@ -60,7 +60,7 @@ class ProjectiveDynamics final : public Integrator {
     for (int i = 0; i < n; ++i) {
       if (row_[i] >= 0) constant_[row_[i]] = (sim.masses[i].m * inverseH2) * target_[i];
     }
-    for (const Spring& sp : sim.springs) {
+    for (const Spring& sp : sim.springs()) {
       const int r1 = row_[sp.mass1], r2 = row_[sp.mass2];
       if (r1 >= 0 && r2 < 0) constant_[r1] += sp.springConstant * target_[sp.mass2];
       if (r2 >= 0 && r1 < 0) constant_[r2] += sp.springConstant * target_[sp.mass1];
@@ -69,7 +69,7 @@ class ProjectiveDynamics final : public Integrator {
     // Local step (exercise 2.12), then the global solve, `iterations` times.
     for (int it = 0; it < iterations_ && rows_ > 0; ++it) {
       rhs_ = constant_;
-      for (const Spring& sp : sim.springs) {
+      for (const Spring& sp : sim.springs()) {
         const int r1 = row_[sp.mass1], r2 = row_[sp.mass2];
         if (r1 < 0 && r2 < 0) continue;
         const Vec3 d = sp.springConstant * projectSpring(x_[sp.mass1], x_[sp.mass2], sp.springLength);
@@ -99,7 +99,7 @@ class ProjectiveDynamics final : public Integrator {
     signature_.clear();
     signature_.push_back(h);
     for (int i = 0; i < sim.numOfMasses(); ++i) signature_.push_back(sim.inverseMass(i) == 0.0 ? 0.0 : sim.masses[i].m);
-    for (const Spring& sp : sim.springs) {
+    for (const Spring& sp : sim.springs()) {
       signature_.insert(signature_.end(), {static_cast<double>(sp.mass1), static_cast<double>(sp.mass2), sp.springConstant});
     }
     if (signature_ == model_) return false;
@@ -119,7 +119,7 @@ class ProjectiveDynamics final : public Integrator {
     for (int i = 0; i < n; ++i) {
       if (row_[i] >= 0) entries.emplace_back(row_[i], row_[i], sim.masses[i].m / (h * h));
     }
-    for (const Spring& sp : sim.springs) {
+    for (const Spring& sp : sim.springs()) {
       const double weight = sp.springConstant;
       const int r1 = row_[sp.mass1], r2 = row_[sp.mass2];
       if (r1 >= 0) entries.emplace_back(r1, r1, weight);

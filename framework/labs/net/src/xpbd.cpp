@@ -53,7 +53,7 @@ class Xpbd final : public Integrator {
   // One distance constraint as the sweep reads it: everything that does not change within a
   // step precomputed, so a projection is loads, one square root and two divisions.
   struct Constraint {
-    int spring;             // index in sim.springs (its tension is kept there between substeps)
+    int spring;             // index in sim.springs() (its tension is kept there between substeps)
     int mass1, mass2;
     double w1, w2;          // 1/kg, inverse masses this step (0: pinned or grabbed)
     double restLength;      // m
@@ -74,7 +74,7 @@ class Xpbd final : public Integrator {
     inverseH2_ = inverseH2;
     constraints_.clear();
     for (const int c : order_) {
-      const Spring& sp = sim.springs[static_cast<std::size_t>(c)];
+      const Spring& sp = sim.springs()[static_cast<std::size_t>(c)];
       if (sp.springConstant <= 0.0) continue;  // no stiffness, no constraint
       const double w1 = sim.inverseMass(sp.mass1), w2 = sim.inverseMass(sp.mass2);
       if (w1 == 0.0 && w2 == 0.0) continue;  // both ends held: nothing to move
@@ -82,14 +82,14 @@ class Xpbd final : public Integrator {
                               sp.frictionConstant / (sp.springConstant * h)});
     }
     lambda_.resize(constraints_.size());
-    tension_.resize(sim.springs.size(), 0.0);
+    tension_.resize(sim.springs().size(), 0.0);
     h_ = h;
   }
 
   bool sameTopology(const Simulation& sim) const {
-    if (ends_.size() != 2 * sim.springs.size()) return false;
-    for (std::size_t c = 0; c < sim.springs.size(); ++c) {
-      if (ends_[2 * c] != sim.springs[c].mass1 || ends_[2 * c + 1] != sim.springs[c].mass2) return false;
+    if (ends_.size() != 2 * sim.springs().size()) return false;
+    for (std::size_t c = 0; c < sim.springs().size(); ++c) {
+      if (ends_[2 * c] != sim.springs()[c].mass1 || ends_[2 * c + 1] != sim.springs()[c].mass2) return false;
     }
     return true;
   }
@@ -98,14 +98,14 @@ class Xpbd final : public Integrator {
   // mass; a cloth mass has 12 springs, so about 20 colours). Past 64 colours a spring goes to
   // the last colour, which keeps the order valid Gauss-Seidel, only less overlapped.
   void colour(const Simulation& sim) {
-    const std::size_t springs = sim.springs.size();
+    const std::size_t springs = sim.springs().size();
     tension_.clear();  // they belonged to the old springs
     ends_.resize(2 * springs);
     std::vector<std::uint64_t> used(static_cast<std::size_t>(sim.numOfMasses()), 0);
     std::vector<int> colourOf(springs);
     std::vector<int> count(65, 0);
     for (std::size_t c = 0; c < springs; ++c) {
-      const Spring& sp = sim.springs[c];
+      const Spring& sp = sim.springs()[c];
       ends_[2 * c] = sp.mass1;
       ends_[2 * c + 1] = sp.mass2;
       std::uint64_t& a = used[static_cast<std::size_t>(sp.mass1)];
@@ -122,9 +122,7 @@ class Xpbd final : public Integrator {
     for (std::size_t c = 0; c < springs; ++c) order_[static_cast<std::size_t>(count[static_cast<std::size_t>(colourOf[c])]++)] = static_cast<int>(c);
   }
 
-  // `flatten` inlines exercise 2.11 into the sweep where the compiler sees it (the reference
-  // is one unit), as Net's force loop does with 2.2.
-  [[gnu::flatten]] void substep(Simulation& sim, double h) {
+  void substep(Simulation& sim, double h) {
     State& s = sim.state;
     const int n = sim.numOfMasses();
 

@@ -6,7 +6,7 @@ Rope::Rope(int dim, const RopeParameters& p) : RopeSimulation(dim, p) {
   // Build the chain from exercise 1.7 and start the run from it.
   RopeLayout layout = buildRope(p);
   masses = std::move(layout.masses);
-  springs = std::move(layout.springs);
+  editSprings() = std::move(layout.springs);
   state.pos = std::move(layout.pos);
   state.vel = std::move(layout.vel);
   finishBuilding();
@@ -21,7 +21,7 @@ std::vector<std::string> Rope::forceTermNames() const {
 void Rope::accumulateForces(const State& s, std::vector<Vec3>& f) {
   // Springs: equal and opposite on their two ends (exercise 1.1).
   if (forceTermOn(kSprings)) {
-    for (const Spring& sp : springs) {
+    for (const Spring& sp : springs()) {
       const Vec3 f1 = springDamperForce(s.pos[sp.mass1], s.pos[sp.mass2], s.vel[sp.mass1], s.vel[sp.mass2],
                                         sp.springConstant, sp.springLength, sp.frictionConstant);
       f[sp.mass1] += f1;

@@ -10,12 +10,13 @@ SoftBody::SoftBody(int dim, SoftBodyParameters parameters) : Simulation(dim), p_
   // Equal masses over the vertices; springs along the edges, plus the extra ones asked for.
   const int n = static_cast<int>(p_.mesh.vertices.size());
   masses.assign(static_cast<size_t>(n), Mass{p_.totalMass / n, false});
-  springs = edgeSprings(p_.mesh, p_.springConstant, p_.springFriction);
+  std::vector<Spring>& built = editSprings();
+  built = edgeSprings(p_.mesh, p_.springConstant, p_.springFriction);
   if (p_.oppositeSprings) {
-    for (const Spring& s : oppositeSprings(p_.mesh, p_.extraSpringConstant, p_.extraSpringFriction)) springs.push_back(s);
+    for (const Spring& s : oppositeSprings(p_.mesh, p_.extraSpringConstant, p_.extraSpringFriction)) built.push_back(s);
   }
   if (p_.secondRingSprings) {
-    for (const Spring& s : secondRingSprings(p_.mesh, p_.extraSpringConstant, p_.extraSpringFriction)) springs.push_back(s);
+    for (const Spring& s : secondRingSprings(p_.mesh, p_.extraSpringConstant, p_.extraSpringFriction)) built.push_back(s);
   }
 
   // Faces must turn outward for the pressure to push out: turn over a mesh wound inward.
@@ -62,7 +63,7 @@ std::vector<std::string> SoftBody::forceTermNames() const {
 
 void SoftBody::accumulateForces(const State& s, std::vector<Vec3>& f) {
   // Springs along the surface and across it (exercise 3.1).
-  if (forceTermOn(kSprings)) addSpringForces(s.pos, s.vel, springs, f);
+  if (forceTermOn(kSprings)) addSpringForces(s.pos, s.vel, springs(), f);
 
   // Weight and air drag on each mass.
   if (forceTermOn(kGravityAndAir)) {
@@ -227,7 +228,7 @@ std::vector<Parameter> SoftBody::declareParameters() {
   const auto edgeSprings = [this](double SoftBodyParameters::*constant, double Spring::*field) {
     return [this, constant, field](double value) {
       p_.*constant = value;
-      for (Spring& s : springs) {
+      for (Spring& s : editSprings()) {
         if (s.kind == SpringKind::Structural) s.*field = value;
       }
     };
@@ -255,7 +256,7 @@ double SoftBody::angularFrequencyBound() const {
   const double w = springGershgorinBound(*this);
   const double pressureNow = std::max(p_.gas > 0.0 ? p_.gas / std::max(restVolume_, 1e-12) : 0.0, 0.0);
   std::vector<double> edgeLength(masses.size(), 0.0);
-  for (const Spring& s : springs) {
+  for (const Spring& s : springs()) {
     if (s.kind != SpringKind::Structural) continue;
     edgeLength[s.mass1] += s.springLength;
     edgeLength[s.mass2] += s.springLength;

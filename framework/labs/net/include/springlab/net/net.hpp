@@ -3,6 +3,7 @@
 // of the lab's scene kind and integrators, built on the exercises of springlab/net/exercises.hpp;
 // the framework compiles this once and links it with the student's exercises (labs/02_net/)
 // or the reference (solutions/02_net/).
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,8 +15,6 @@
 #include <springlab/scene_reader.hpp>
 #include <springlab/scene_shapes.hpp>
 #include <springlab/simulation.hpp>
-#include <springlab/spring_batches.hpp>
-#include <springlab/spring_families.hpp>
 
 namespace springlab::net {
 
@@ -23,10 +22,14 @@ namespace springlab::net {
 NetParameters readNetParameters(SceneReader& section, const SceneSettings& settings);
 
 
+// The framework's fast spring pass (src/fast_spring_forces.hpp), which Net asks first.
+class FastSpringForces;
+
 // ---- The net system, calling the exercises ----------------------------------------------
 class Net final : public Simulation {
  public:
   Net(int dimension, const NetParameters& parameters);
+  ~Net() override;
 
   NetParameters settings;  // the scene's settings: model, edited through editModel (the panel)
 
@@ -69,10 +72,7 @@ class Net final : public Simulation {
   int rows_ = 0;
   std::vector<SphereCollider> spheres_;            // current colliders
   std::vector<ColliderDrag> drags_;                // [spheres] where the user holds each one
-  // The spring forces of state s into families_' buffers.
-  void familySpringForces(const State& s);
-
-  SpringFamilies families_;                        // the springs sorted for the force pass
+  std::unique_ptr<FastSpringForces> fastSprings_;  // the springs' forces and Jacobians, faster
   std::vector<Vec3> normals_;                      // [n] scratch for the wind
   std::vector<double> areas_;                      // [n] m^2
   std::vector<double> inverseMass_;                // [n] scratch for stretch limiting

@@ -16,39 +16,15 @@
 // Springs that fit no family (a second spring between the same masses, an offset too rare
 // to be worth a buffer) are left over, in list order, for the caller's plain loop.
 //
-// The copies are the model's: they hold while the springs change only through
-// Simulation::editModel, whose hook calls refresh(). check() compares a slice of the records
-// with the copies on every pass (all of them every kCheckPasses passes), so a spring edited
-// behind editModel's back is reported, not silently ignored for ever.
+// The copies are the model's: Simulation::editModel, the one writer of the springs, calls
+// the lab's hook, which calls refresh() (or sorts again).
 #include <cstddef>
 #include <vector>
 
 #include "springlab/math.hpp"
 #include "springlab/spring.hpp"
 
-// GCC on x86-64 builds the force pass's loops twice: for the machine's baseline and for AVX2
-// (SPRINGLAB_TARGET_AVX2), and runs the second where the CPU has it (hasAvx2()): 4 doubles per
-// instruction there, a portable binary everywhere. AVX2 without FMA: the same operations in the
-// same order, so both give bitwise the same results. Other compilers build the baseline only.
-// (Explicit functions, not target_clones: GCC 12's clones lose `restrict` on their parameters,
-// and with it the vectorisation.) Not on Windows: MinGW-w64's GCC does not align the stack to
-// 32 bytes for AVX spills there (GCC bug 54412), so an AVX2 function can fault.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(_WIN32)
-#define SPRINGLAB_AVX2_VARIANT 1
-#define SPRINGLAB_TARGET_AVX2 __attribute__((target("avx2")))
-#else
-#define SPRINGLAB_AVX2_VARIANT 0
-#define SPRINGLAB_TARGET_AVX2
-#endif
-
 namespace springlab {
-
-// Whether this CPU (and its operating system) runs AVX2 instructions.
-bool hasAvx2();
-// Whether the force pass runs its AVX2 loops: hasAvx2(), unless a test turned them off
-// (allowAvx2(false)) to compare them with the baseline's, which must give the same bits.
-bool useAvx2();
-void allowAvx2(bool allowed);
 
 class SpringFamilies {
  public:
@@ -69,19 +45,10 @@ class SpringFamilies {
   // Runs are cut into blocks of this many masses (see the constructor).
   static constexpr int kBlockMasses = 512;
 
-  // Whether these families were made for this spring list (the same vector storage and size)
-  // and this many masses.
-  bool fits(const std::vector<Spring>& springs, int masses) const {
-    return springs.data() == records_ && springs.size() == springCount_ && masses == masses_;
-  }
-  // After a model edit: copy every family spring's k, L0 and kd again. False when a spring no
-  // longer joins the masses its run says (the list was rewired, reordered or resized): sort it
-  // again then.
-  bool refresh(const std::vector<Spring>& springs);
-  // Compare the next slice of the springs with the copies (every spring once in kCheckPasses
-  // calls); returns the index of a spring edited since, or -1.
-  static constexpr int kCheckPasses = 256;
-  int check(const std::vector<Spring>& springs);
+  // After a model edit: copy every family spring's k, L0 and kd again. False when the springs
+  // no longer join the masses their runs say (the list was rewired, reordered or resized) or
+  // the number of masses changed: sort them again then.
+  bool refresh(const std::vector<Spring>& springs, int masses);
 
   // Copy positions and velocities into the structures of arrays the runs read.
   void load(const std::vector<Vec3>& pos, const std::vector<Vec3>& vel);
@@ -104,12 +71,8 @@ class SpringFamilies {
   void gather(std::vector<Vec3>& f) const;
 
  private:
-  // The spring records [first, last) of order() against the copies: the first mismatch or -1.
-  int mismatch(const std::vector<Spring>& springs, std::size_t first, std::size_t last) const;
-
   int masses_ = -1;
   std::size_t springCount_ = 0;
-  const Spring* records_ = nullptr;          // the list sorted (its storage), for fits()
   int pad_ = 0;                              // zeros before and after each buffer: |largest offset|
   std::vector<int> offsets_;                 // [families] d
   std::vector<std::vector<Vec3>> buffers_;   // [families][pad + masses + pad] N
@@ -118,7 +81,6 @@ class SpringFamilies {
   std::vector<int> leftovers_;
   std::vector<int> firstMass_, secondMass_;  // [order] the masses each spring must join
   std::vector<double> k_, restLength_, kd_;  // [order] copies of the records
-  std::size_t checked_ = 0;                  // check() resumes at this index of order()
   std::size_t soaStride_ = 0;                // masses, rounded up to 8 doubles, + 24
   std::vector<double> soa_;                  // [6][soaStride_] x, y, z, vx, vy, vz
 };

@@ -1,5 +1,5 @@
-// Thread counts that back off on a loaded machine (see springlab/thread_budget.hpp).
-#include <springlab/thread_budget.hpp>
+// Thread counts that back off on a loaded machine (see thread_budget.hpp).
+#include "fast/thread_budget.hpp"
 
 #include <algorithm>
 #include <atomic>

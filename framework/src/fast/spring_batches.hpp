@@ -9,9 +9,8 @@
 #include <array>
 #include <vector>
 
-#include <springlab/loop_exceptions.hpp>
-#include <springlab/thread_budget.hpp>
-
+#include "fast/loop_exceptions.hpp"
+#include "fast/thread_budget.hpp"
 #include "springlab/spring.hpp"
 
 namespace springlab {

@@ -1,4 +1,4 @@
-// Exercises 1.2 and 1.3: gravity, air friction and the ground.
+// Exercise 1.3, ground contact (labs/01_rope/ground_contact.cpp): its public tests.
 #include <gtest/gtest.h>
 
 #include <springlab/rope/rope.hpp>
@@ -7,24 +7,7 @@
 namespace springlab::rope {
 namespace {
 
-using GravityAndAirFriction = springlab::testing::Seeded;
 using GroundContact = springlab::testing::Seeded;
-
-TEST_F(GravityAndAirFriction, WeightIsMassTimesGravitation) {
-  const double m = uniform(0.01, 5);
-  const Vec3 g = vec3(-10, 10);
-  const Vec3 f = gravityAndAirFriction(m, Vec3::Zero(), g, uniform(0, 1));
-  EXPECT_LT((f - m * g).norm(), 1e-12 * std::max(1.0, f.norm()))
-      << "a mass at rest must feel its weight m g and nothing else " << seedText();
-}
-
-TEST_F(GravityAndAirFriction, AirFrictionOpposesVelocity) {
-  const double air = uniform(0.01, 1);
-  const Vec3 v = vec3(-5, 5);
-  const Vec3 f = gravityAndAirFriction(uniform(0.01, 5), v, Vec3::Zero(), air);
-  EXPECT_LT((f + air * v).norm(), 1e-12 * std::max(1.0, f.norm()))
-      << "without gravity the force must be the air friction -c v, opposite to the velocity " << seedText();
-}
 
 // The classic rope demo's ground.
 Ground someGround() { return Ground{-1.5, 100.0, 0.2, 2.0}; }

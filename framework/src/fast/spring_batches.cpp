@@ -1,4 +1,4 @@
-#include "springlab/spring_batches.hpp"
+#include "fast/spring_batches.hpp"
 
 #include <algorithm>
 #include <cstdlib>

@@ -1,19 +1,18 @@
-#include "springlab/spring_families.hpp"
+#include "fast/spring_families.hpp"
 
 #include <algorithm>
-#include <bit>
-#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <utility>
 
-#include "springlab/spring_batches.hpp"
-#include "springlab/thread_budget.hpp"
+#include "fast/avx2.hpp"
+#include "fast/spring_batches.hpp"
+#include "fast/thread_budget.hpp"
 
 namespace springlab {
 
 SpringFamilies::SpringFamilies(const std::vector<Spring>& springs, int masses)
-    : masses_(masses), springCount_(springs.size()), records_(springs.data()) {
+    : masses_(masses), springCount_(springs.size()) {
   // Offsets shared by enough springs to pay for a buffer of one force per mass.
   std::map<int, int> springsPerOffset;
   for (const Spring& s : springs) {
@@ -77,7 +76,7 @@ SpringFamilies::SpringFamilies(const std::vector<Spring>& springs, int masses)
   std::stable_sort(blocked.begin(), blocked.end(),
                    [](const Run& a, const Run& b) { return a.first / kBlockMasses < b.first / kBlockMasses; });
   runs_ = std::move(blocked);
-  // Where each spring of order() must start and end, for refresh() and check().
+  // Where each spring of order() must start and end, for refresh().
   firstMass_.resize(order_.size());
   secondMass_.resize(order_.size());
   for (const Run& run : runs_) {
@@ -86,14 +85,14 @@ SpringFamilies::SpringFamilies(const std::vector<Spring>& springs, int masses)
       secondMass_[static_cast<std::size_t>(run.spring + t)] = run.first + t + offset(run.family);
     }
   }
-  refresh(springs);
+  refresh(springs, masses);
   // Zeros around each buffer: gather() reads forces(family)[i - d] for every mass i.
   const std::size_t length = static_cast<std::size_t>(std::max(masses, 0) + 2 * pad_);
   buffers_.assign(offsets_.size(), std::vector<Vec3>(length, Vec3::Zero()));
 }
 
-bool SpringFamilies::refresh(const std::vector<Spring>& springs) {
-  if (springs.size() != springCount_) return false;
+bool SpringFamilies::refresh(const std::vector<Spring>& springs, int masses) {
+  if (springs.size() != springCount_ || masses != masses_) return false;
   k_.resize(order_.size());
   restLength_.resize(order_.size());
   kd_.resize(order_.size());
@@ -104,32 +103,7 @@ bool SpringFamilies::refresh(const std::vector<Spring>& springs) {
     restLength_[at] = sp.springLength;
     kd_[at] = sp.frictionConstant;
   }
-  records_ = springs.data();
-  checked_ = 0;
   return true;
-}
-
-int SpringFamilies::check(const std::vector<Spring>& springs) {
-  if (order_.empty()) return -1;
-  const std::size_t slice = (order_.size() + kCheckPasses - 1) / kCheckPasses;
-  const std::size_t first = checked_, last = std::min(order_.size(), first + slice);
-  checked_ = last == order_.size() ? 0 : last;
-  return mismatch(springs, first, last);
-}
-
-int SpringFamilies::mismatch(const std::vector<Spring>& springs, std::size_t first, std::size_t last) const {
-  // Bits, not values: a NaN k copied is the same NaN, and 0.0 and -0.0 are different edits.
-  const auto same = [](double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); };
-  for (std::size_t at = first; at < last; ++at) {
-    const int k = order_[at];
-    if (static_cast<std::size_t>(k) >= springs.size()) return k;
-    const Spring& sp = springs[static_cast<std::size_t>(k)];
-    if (sp.mass1 != firstMass_[at] || sp.mass2 != secondMass_[at] || !same(sp.springConstant, k_[at]) ||
-        !same(sp.springLength, restLength_[at]) || !same(sp.frictionConstant, kd_[at])) {
-      return k;
-    }
-  }
-  return -1;
 }
 
 namespace {
@@ -145,17 +119,10 @@ namespace {
   }
 }
 
-void toRowsPortable(const double* __restrict p, double* __restrict x, double* __restrict y, double* __restrict z,
-                    std::size_t n) {
-  toRows(p, x, y, z, n);
-}
-
-#if SPRINGLAB_AVX2_VARIANT
-SPRINGLAB_TARGET_AVX2 void toRowsAvx2(const double* __restrict p, double* __restrict x, double* __restrict y,
-                                      double* __restrict z, std::size_t n) {
-  toRows(p, x, y, z, n);
-}
-#endif
+SPRINGLAB_AVX2_TWINS(toRows,
+                     (const double* __restrict p, double* __restrict x, double* __restrict y, double* __restrict z,
+                      std::size_t n),
+                     (p, x, y, z, n))
 
 }  // namespace
 
@@ -169,30 +136,10 @@ void SpringFamilies::load(const std::vector<Vec3>& pos, const std::vector<Vec3>&
   soa_.resize(6 * soaStride_);
   // Vec3 is three packed doubles: mass i's components are doubles 3i, 3i + 1, 3i + 2.
   static_assert(sizeof(Vec3) == 3 * sizeof(double));
-#if SPRINGLAB_AVX2_VARIANT
-  const auto rows = useAvx2() ? toRowsAvx2 : toRowsPortable;
-#else
-  const auto rows = toRowsPortable;
-#endif
+  const auto rows = toRowsForThisCpu();
   double* row = soa_.data();
   rows(pos.front().data(), row, row + soaStride_, row + 2 * soaStride_, n);
   rows(vel.front().data(), row + 3 * soaStride_, row + 4 * soaStride_, row + 5 * soaStride_, n);
-}
-
-namespace {
-bool avx2Allowed = true;
-}  // namespace
-
-bool useAvx2() { return avx2Allowed && hasAvx2(); }
-void allowAvx2(bool allowed) { avx2Allowed = allowed; }
-
-bool hasAvx2() {
-#if SPRINGLAB_AVX2_VARIANT
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-#else
-  return false;
-#endif
 }
 
 namespace {
@@ -219,31 +166,23 @@ template <int N>
   }
 }
 
-template <int N>
-void gatherPortable(double* __restrict f, const double* const* plus, const double* const* minus, std::ptrdiff_t begin,
-                    std::ptrdiff_t end) {
-  gatherFamilies<N>(f, plus, minus, begin, end);
-}
-
-#if SPRINGLAB_AVX2_VARIANT
-template <int N>
-SPRINGLAB_TARGET_AVX2 void gatherAvx2(double* __restrict f, const double* const* plus, const double* const* minus,
-                                      std::ptrdiff_t begin, std::ptrdiff_t end) {
-  gatherFamilies<N>(f, plus, minus, begin, end);
-}
-#endif
-
-using GatherFunction = void (*)(double*, const double* const*, const double* const*, std::ptrdiff_t, std::ptrdiff_t);
-
+// The loop for 1 to kMaxFamilies families, chosen once per call.
 template <int... N>
-GatherFunction gatherFor(int families, std::integer_sequence<int, N...>) {
-  static constexpr GatherFunction kPortable[] = {nullptr, gatherPortable<N + 1>...};
-#if SPRINGLAB_AVX2_VARIANT
-  static constexpr GatherFunction kAvx2[] = {nullptr, gatherAvx2<N + 1>...};
-  if (useAvx2()) return kAvx2[families];
-#endif
-  return kPortable[families];
+[[gnu::always_inline]] inline void gatherAny(int families, double* __restrict f, const double* const* plus,
+                                             const double* const* minus, std::ptrdiff_t begin, std::ptrdiff_t end,
+                                             std::integer_sequence<int, N...>) {
+  ((families == N + 1 ? gatherFamilies<N + 1>(f, plus, minus, begin, end) : void()), ...);
 }
+
+[[gnu::always_inline]] inline void gatherSum(int families, double* __restrict f, const double* const* plus,
+                                             const double* const* minus, std::ptrdiff_t begin, std::ptrdiff_t end) {
+  gatherAny(families, f, plus, minus, begin, end, std::make_integer_sequence<int, SpringFamilies::kMaxFamilies>());
+}
+
+SPRINGLAB_AVX2_TWINS(gatherSum,
+                     (int families, double* __restrict f, const double* const* plus, const double* const* minus,
+                      std::ptrdiff_t begin, std::ptrdiff_t end),
+                     (families, f, plus, minus, begin, end))
 
 }  // namespace
 
@@ -259,18 +198,18 @@ void SpringFamilies::gather(std::vector<Vec3>& f) const {
     plus[q] = forces->data();
     minus[q] = (forces - offset(q))->data();
   }
-  const GatherFunction sum = gatherFor(count, std::make_integer_sequence<int, kMaxFamilies>());
+  const auto sum = gatherSumForThisCpu();
   double* out = f.front().data();
   const std::ptrdiff_t doubles = 3 * static_cast<std::ptrdiff_t>(masses_);
   // Every double is summed the same way on any number of threads.
   const int threads = masses_ > kParallelMasses ? threadBudget() : 1;
   if (threads <= 1) {
-    sum(out, plus, minus, 0, doubles);
+    sum(count, out, plus, minus, 0, doubles);
     return;
   }
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (int t = 0; t < threads; ++t) {
-    sum(out, plus, minus, doubles * t / threads, doubles * (t + 1) / threads);
+    sum(count, out, plus, minus, doubles * t / threads, doubles * (t + 1) / threads);
   }
 }
 
