@@ -348,6 +348,11 @@ class LinearisedRuns {
   int steps_ = 0;
   Eigen::MatrixXd directions_;  // [size x ...] modalDirections
   std::optional<bool> historyFree_;
+
+ public:
+  // The coordinates a contact holds at the settled state (found once, by radiusOf's first
+  // dense probe; empty until then).
+  std::vector<char> held;
 };
 
 // The largest |eigenvalue| of the map that takes the columns of X to those of Y, on X's
@@ -424,34 +429,37 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   const bool oneStep = runs.historyFree(dt);
   const Eigen::MatrixXd base = runs.run(dt, oneStep ? 0 : 1, {});
   const Eigen::VectorXd scale = runs.perturbationScale();
-  // The whole Jacobian is probed on each side of every coordinate. Where the two sides
-  // disagree the step is not differentiable there: a mass resting on a collider, whose push
-  // inwards is projected away (and kicks its velocity by the push over dt) while a pull
-  // outwards moves freely. That coordinate is held by its contact, not an oscillator of the
-  // step: it is left out of the Rayleigh-Ritz subspace, and the others are taken by central
-  // differences. The modal directions, spread over many masses, are probed on one side.
+  // The first dense probe takes both sides of every coordinate. Where the two disagree the
+  // step is not differentiable there: a mass resting on a collider, whose push inwards is
+  // projected away (and kicks its velocity by the push over dt) while a pull outwards moves
+  // freely. That coordinate is held by its contact, not an oscillator of the step: it is left
+  // out of the Rayleigh-Ritz subspace from then on (the contacts of the settled state do not
+  // depend on dt). The modal directions, spread over many masses, are probed on one side.
   const bool dense = n <= o.denseBelow;
+  const bool findHeld = dense && runs.held.empty();
+  if (findHeld) runs.held.assign(static_cast<std::size_t>(n), 0);
   const int last = oneStep ? 0 : 1;
   Eigen::MatrixXd X(n, U.cols()), Y(n, U.cols());
   Eigen::Index kept = 0;
   for (Eigen::Index j = 0; j < U.cols(); ++j) {
+    if (dense && !findHeld && runs.held[static_cast<std::size_t>(j)]) continue;
     const Eigen::VectorXd u = U.col(j) / U.col(j).cwiseAbs().maxCoeff();
     const Eigen::MatrixXd moved = runs.run(dt, last, u);
-    const Eigen::MatrixXd opposite = dense ? runs.run(dt, last, -u) : base;
+    const Eigen::MatrixXd opposite = findHeld ? runs.run(dt, last, -u) : base;
     if (moved.cols() < base.cols() || opposite.cols() < base.cols() || base.cols() < last + 1) {
       out.radius = INFINITY;
       out.steps = runs.steps() - before;
       return out;
     }
-    Eigen::VectorXd x = oneStep ? Eigen::VectorXd(u.cwiseProduct(scale)) : Eigen::VectorXd(moved.col(0) - base.col(0));
-    Eigen::VectorXd y = moved.col(last) - base.col(last);
-    if (dense) {
+    const Eigen::VectorXd y = moved.col(last) - base.col(last);
+    if (findHeld) {
       const Eigen::VectorXd back = opposite.col(last) - base.col(last);
-      if ((y + back).norm() > 0.1 * std::max(y.norm(), back.norm())) continue;  // one-sided: a contact
-      y = 0.5 * (y - back);
-      if (!oneStep) x = 0.5 * (moved.col(0) - opposite.col(0));
+      if ((y + back).norm() > 0.1 * std::max(y.norm(), back.norm())) {
+        runs.held[static_cast<std::size_t>(j)] = 1;  // one-sided: a contact
+        continue;
+      }
     }
-    X.col(kept) = x;
+    X.col(kept) = oneStep ? Eigen::VectorXd(u.cwiseProduct(scale)) : Eigen::VectorXd(moved.col(0) - base.col(0));
     Y.col(kept) = y;
     ++kept;
   }
