@@ -81,6 +81,18 @@ class ManifestErrorsNameFileAndField(Temp):
         for lab in labs.discover_labs():
             self.assertEqual(manifest.check_handout(lab.manifest, ROOT / lab.manifest["handout"]), [])
 
+    def test_builds_on_names_other_labs(self):
+        # The programs of a lab register the labs it builds on (the rope's integrators in the
+        # net's scenes); an id that names no other lab stops with the file and the field.
+        for lab in labs.discover_labs():
+            folder = self.tmp / "tests" / lab.dir
+            folder.mkdir(parents=True)
+            (folder / "exercises.json").write_text(json.dumps(lab.manifest if lab.name != "net" else
+                                                              {**lab.manifest, "builds_on": ["cloth"]}))
+        with self.assertRaisesRegex(errors.GradeError, r"02_net/exercises.json: builds_on: 'cloth' is not another lab's id"):
+            labs.discover_labs(self.tmp)
+        self.assertEqual([lab.manifest.get("builds_on", []) for lab in labs.discover_labs()], [[], ["rope"], ["rope"]])
+
 
 class HiddenMessagesShowNoValues(unittest.TestCase):
     def test_gtest_value_lines_dropped(self):

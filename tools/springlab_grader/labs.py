@@ -70,6 +70,10 @@ def check_layout(data, path):
         raise GradeError(f"{path}: lab: '{data['lab']}' is not the id in the folder's name ('{match[2]}')")
     for key in ("handout", "scene"):
         need(data, key, str)
+    # The labs whose exercises this lab's scenes run too (the rope's integrators); optional.
+    builds_on = data.get("builds_on", [])
+    if not (isinstance(builds_on, list) and all(isinstance(b, str) and FOLDER.match(f"00_{b}") for b in builds_on)):
+        raise GradeError(f"{path}: builds_on: must be a list of lab ids ([\"rope\"])")
     for type_name, fields in need(data, "values", dict).items():
         if not (isinstance(fields, list) and fields and all(isinstance(f, str) for f in fields)):
             raise GradeError(f"{path}: values.{type_name}: must be the list of the struct's fields")
@@ -103,6 +107,12 @@ def discover_labs(root=ROOT):
         labs.append(Lab(manifest["lab"], manifest["folder"], manifest))
     if not labs:
         raise GradeError(f"{root / 'tests'}: no NN_<lab>/exercises.json manifests: no labs")
+    ids = [lab.name for lab in labs]
+    for lab in labs:
+        for base in lab.manifest.get("builds_on", []):
+            if base not in ids or base == lab.name:
+                raise GradeError(f"{root / 'tests' / lab.dir / 'exercises.json'}: builds_on: '{base}' is not "
+                                 f"another lab's id ({', '.join(ids)})")
     return labs
 
 
