@@ -1,0 +1,157 @@
+"""`check` beside an exercise file that does not compile, as `grade` grades beside one
+(lab_grader.py): the file is graded as the released skeleton's (its exercises score 0) and the
+lab's other files are graded. When the lab's grading program did not build, this compiles each of
+the lab's exercise files that has no fresh object with the build's own command (from CMake's
+compile_commands.json) to learn which do not compile and why, puts in the place of each a stub of
+its exercise functions that throws NotImplemented, as the skeleton's do (written from the
+manifest's declarations: a student tree has no skeleton to copy), and links the lab's grading
+program as CMake wrote its link down (grading/<lab>_link.json, link_file.py). Shipped in the
+student release; nothing here runs student code."""
+import concurrent.futures
+import dataclasses
+import json
+import os
+import pathlib
+import re
+import shlex
+import subprocess
+
+from .compile_errors import first_errors
+from .errors import GradeError
+from .link_file import read_link_file
+
+
+@dataclasses.dataclass
+class Compile:
+    """One exercise file's compile, as CMake runs it."""
+    argv: list
+    directory: pathlib.Path
+    source: pathlib.Path
+    output: pathlib.Path
+
+    def fresh(self):
+        """Its object exists and is newer than the file (a failed compile leaves the old one)."""
+        return self.output.is_file() and self.output.stat().st_mtime_ns >= self.source.stat().st_mtime_ns
+
+    def run(self):
+        """Compile; (exit code, the compiler's text)."""
+        argv = [*self.argv, "-fdiagnostics-color=never"]
+        run = subprocess.run(argv, cwd=self.directory, capture_output=True, text=True, errors="replace")
+        return run.returncode, run.stdout + run.stderr
+
+    def of(self, source, output):
+        """The same compile of another file into another object (no dependency file)."""
+        argv, skip = [], False
+        for arg in self.argv:
+            if skip:
+                skip = False
+            elif arg in ("-MT", "-MF", "-MQ"):
+                skip = True
+            elif arg in ("-MD", "-MMD"):
+                continue
+            elif arg == str(self.output) or (not os.path.isabs(arg) and self.directory / arg == self.output):
+                argv.append(str(output))
+            elif arg == str(self.source) or (not os.path.isabs(arg) and self.directory / arg == self.source):
+                argv.append(str(source))
+            else:
+                argv.append(arg)
+        return Compile(argv, self.directory, pathlib.Path(source), pathlib.Path(output))
+
+
+def exercise_compiles(build, lab, tree="student"):
+    """{exercise file: its Compile} of lab `lab` in a build (the compile commands of
+    springlab_<lab>_student_objects, or _solution_objects for the reference); {} when the build
+    has no compile_commands.json."""
+    commands = pathlib.Path(build) / "compile_commands.json"
+    if not commands.is_file():
+        return {}
+    target = f"springlab_{lab}_{'student' if tree == 'student' else 'solution'}_objects.dir/"
+    found = {}
+    for entry in json.loads(commands.read_text()):
+        command = entry.get("command", "")
+        argv = entry.get("arguments") or shlex.split(command)
+        if target not in " ".join(argv) or "-o" not in argv:
+            continue
+        directory = pathlib.Path(entry.get("directory", "."))
+        source = pathlib.Path(entry["file"])
+        found[source.name] = Compile(argv, directory, directory / source, directory / argv[argv.index("-o") + 1])
+    return found
+
+
+def stub_source(manifest, name):
+    """The stub of exercise file `name`: each function its exercises declare (the manifest's
+    declarations, as the lab's exercises.hpp spells them) throws NotImplemented."""
+    lab = manifest["lab"]
+    where = f"labs/{manifest['folder']}/{name}, which does not compile"
+    bodies = []
+    for ex in manifest["exercises"]:
+        if ex.get("file") != name:
+            continue
+        for declaration in ex.get("functions", []):
+            bodies.append(f"{declaration} {{\n  throw springlab::NotImplemented(\"{ex['id']}\", \"{ex['title']}\", "
+                          f"\"{where}\");\n}}\n")
+    return (f"// Written by `./springlab check` in the place of {name}, which does not compile.\n"
+            f"#include <springlab/{lab}/exercises.hpp>\n\nnamespace springlab::{lab} {{\n\n"
+            + "\n".join(bodies) + f"\n}}  // namespace springlab::{lab}\n")
+
+
+@dataclasses.dataclass
+class Rebuilt:
+    binary: pathlib.Path  # the lab's grading program, with stubs for the broken files
+    broken: dict          # {exercise file: the compiler's full text (paths relative to the tree)}
+
+
+def rebuild(build, manifest, tree, jobs=2):
+    """The lab's grading program when some of its exercise files do not compile: the others'
+    objects with a stub of each broken one, linked as CMake links the program. A Rebuilt whose
+    `broken` is empty when every exercise file compiles (the build failed elsewhere: then there
+    is no binary). Raises GradeError when the program cannot be linked."""
+    build, tree = pathlib.Path(build), pathlib.Path(tree).resolve()
+    lab = manifest["lab"]
+    compiles = exercise_compiles(build, lab)
+    if not compiles:
+        raise GradeError(f"{build}/compile_commands.json: no compile of the {lab} lab's exercise files; "
+                         f"configure the build again (./springlab build)")
+    stale = [name for name, c in sorted(compiles.items()) if not c.fresh()]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        outcomes = dict(zip(stale, pool.map(lambda n: compiles[n].run(), stale)))
+    prefix = str(tree) + os.sep
+    broken = {name: text.replace(prefix, "") for name, (code, text) in outcomes.items() if code != 0}
+    if not broken:
+        return Rebuilt(None, {})
+
+    # Each broken file's stub, compiled with the file's own command.
+    work = build / "check" / lab
+    work.mkdir(parents=True, exist_ok=True)
+    objects = []
+    for name, compile_ in sorted(compiles.items()):
+        if name not in broken:
+            objects.append(compile_.output)
+            continue
+        source, output = work / f"stub_{name}", work / f"stub_{name}.o"
+        source.write_text(stub_source(manifest, name))
+        code, text = compile_.of(source, output).run()
+        if code != 0:
+            raise GradeError(f"the stub check put in the place of {name} does not compile (does "
+                             f"{manifest['folder']}/exercises.hpp match the manifest?):\n{first_errors(text)}")
+        objects.append(output)
+
+    # The link CMake wrote down, with an archive of these objects and the lab's given ones.
+    link = read_link_file(build / "grading" / f"{lab}_link.json")
+    needed = [*link.test_objects, *link.main_objects, *link.given_objects,
+              *(lib for lib in link.libraries if re.search(r"\.(a|so)$", lib) and os.path.isabs(lib))]
+    missing = [path for path in needed if not os.path.exists(path)]
+    if missing:
+        raise GradeError(f"the lab's other parts did not build either (no {missing[0]}"
+                         f"{f' and {len(missing) - 1} more' if len(missing) > 1 else ''})")
+    archive, binary = work / f"libcheck_{lab}.a", work / f"{lab}_grading_student"
+    archive.unlink(missing_ok=True)
+    run = subprocess.run(["ar", "qcs", str(archive), *map(str, objects), *link.given_objects],
+                         capture_output=True, text=True)
+    if run.returncode != 0:
+        raise GradeError(f"ar: {run.stderr.strip()}")
+    run = subprocess.run(link.argv(archive, binary), cwd=work, capture_output=True, text=True)
+    if run.returncode != 0:
+        raise GradeError(f"the lab's grading program does not link beside the stubs:\n"
+                         f"{first_errors((run.stdout + run.stderr).replace(prefix, ''))}")
+    return Rebuilt(binary, broken)
