@@ -131,6 +131,8 @@ def _said(block):
         return (f"{a} within {_short(values.get(m['tol'], m['tol']))} of {_named(b, values.get(b, b))}",
                 f"{_named(a, values.get(a, a))} (a difference of {_short(m['d'])})", rest[i:])
     m = _THROWN.match(head)
+    if m and m["what"].startswith("not implemented: "):
+        return None, None, [m["what"], *rest]  # a skeleton's stub: its own words say it all
     if m:
         return "no exception", f"an exception: {m['what']}", rest
     m = _THROWS.match(head)
@@ -159,7 +161,7 @@ def sentences(message, raw=False, most=3):
             out.append((words or "\n".join(blocks[0])) + times)
         else:
             out += [f"expected: {expected}", f"came:     {came}{times}"] + ([f"check:    {words}"] if words else [])
-        if raw:
+        if raw and any(p.match(blocks[0][0]) for p in _STARTS):
             out += ["GoogleTest: " + blocks[0][0], *("            " + line for line in blocks[0][1:])]
     if len(said) > most:
         more = len(said) - most
