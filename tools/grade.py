@@ -34,7 +34,7 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.call_check import REPLACED  # noqa: E402
-from springlab_grader.compile_errors import NOT_COMPILING, not_compiling_note, summary  # noqa: E402
+from springlab_grader.compile_errors import NOT_COMPILING, NOT_DEFINED, first_errors, not_compiling_note, not_defined_note, summary  # noqa: E402
 from springlab_grader.errors import GradeError  # noqa: E402
 from springlab_grader.gtest_runner import check_binary_against_manifest, draw_seed, grade_binary  # noqa: E402
 from springlab_grader.judged_run import bubblewrap, go_without_bubblewrap, starts_in_bubblewrap  # noqa: E402
@@ -64,8 +64,8 @@ def main():
                          "files that do not compile, each graded as the skeleton's (student_build.py)")
     ap.add_argument("--verbose", action="store_true",
                     help="under each summary, the compiler's full text and GoogleTest's own failure text")
-    ap.add_argument("--full-text", default="--verbose",
-                    help="how the student sees the full texts (said where they are left out)")
+    ap.add_argument("--again", default="tools/grade.py ...",
+                    help="the command that runs this check again (said with --verbose where full texts are left out)")
     ap.add_argument("--classroom", metavar="FILE",
                     help="also append this lab's public result for GitHub Classroom's reporter to FILE "
                          "($GITHUB_OUTPUT): result=<base64 JSON>; a program that is missing (the lab does not "
@@ -91,14 +91,19 @@ def main():
     if not args.binary:
         ap.error("--binary is required")
     binary = str(pathlib.Path(args.binary).resolve())  # tests run in their own folders
+    # Where the full texts left out of the report are: the compiler's also in the build's log.
+    args.full_text = f"{args.again} --verbose"
+    args.compiler_text = args.full_text + (f", or {rel(args.after_failed_build)}" if args.after_failed_build else "")
     tree = pathlib.Path(args.manifest).resolve().parents[2]
-    # The build failed: each exercise file that does not compile is graded as the skeleton's.
-    broken = {}
+    # The build failed: each exercise file that does not compile (or does not define its
+    # functions as declared) is graded as the skeleton's. The call check reads the objects of
+    # the build's program (`built`).
+    built, broken, undefined = binary, {}, {}
     if args.after_failed_build:
         rebuilt = after_failed_build(binary, manifest, tree, args)
         if rebuilt is None:
             return 2
-        binary, broken = str(rebuilt.binary), rebuilt.broken
+        binary, broken, undefined = str(rebuilt.binary), rebuilt.broken, rebuilt.undefined
     # The workers' seccomp filter, as `grade` gives it (built beside the grading programs).
     seccomp = args.seccomp or str(pathlib.Path(binary).with_name("springlab_worker_seccomp"))
     if not os.access(binary, os.X_OK):
@@ -134,23 +139,26 @@ def main():
     seed = draw_seed(args.seed)
     print(f"{manifest['title']}: grading {shown} (SPRINGLAB_SEED={seed})")
     started = time.monotonic()
-    # A file that does not compile: its exercises' tests are not run, and fail with grade's words.
+    # A file that does not compile or define its functions: its exercises' tests are not run,
+    # and fail with grade's words.
     exercises = exercises_by_file(tree, manifest["folder"])
-    not_compiling = {ex_id: name for name in broken for ex_id in exercises.get(name, [])}
-    run = {t["name"] for ex in manifest["exercises"] if ex["id"] not in not_compiling for t in ex["tests"]}
+    stubbed = {ex_id: NOT_COMPILING.format(name=name) for name in broken for ex_id in exercises.get(name, [])}
+    stubbed.update({ex_id: NOT_DEFINED.format(name=name) for name in undefined for ex_id in exercises.get(name, [])})
+    run = {t["name"] for ex in manifest["exercises"] if ex["id"] not in stubbed for t in ex["tests"]}
     results = grade_binary(binary, manifest, seed, sandbox, args.jobs, present, seccomp=seccomp, only=run)
-    results += [TestResult(ex, t, False, NOT_COMPILING.format(name=not_compiling[ex["id"]]), 0.0)
-                for ex in manifest["exercises"] if ex["id"] in not_compiling for t in ex["tests"]
+    results += [TestResult(ex, t, False, stubbed[ex["id"]], 0.0)
+                for ex in manifest["exercises"] if ex["id"] in stubbed for t in ex["tests"]
                 if t["name"] in present or t["visibility"] == "visible"]
     order = {t["name"]: i for i, t in enumerate(t for ex in manifest["exercises"] for t in ex["tests"])}
     results.sort(key=lambda r: order[r.test["name"]])
     notes = [not_compiling_note(name, exercises.get(name, []), compile_summary(broken[name], name, manifest, tree),
                                 f"The compiler's full text:\n{text}" if args.verbose else
-                                f"The compiler's full text: {args.full_text}")
+                                f"The compiler's full text: {args.compiler_text}")
              for name, text in sorted(broken.items())]
+    notes += [not_defined_note(name, functions) for name, functions in sorted(undefined.items())]
     # The call check `grade` makes: a file that calls what exercise code may not scores as the
     # skeleton's there, so here too, with the same sentence.
-    flagged = forbidden_call_notes(shown, tree, manifest["lab"], skip=set(broken))
+    flagged = forbidden_call_notes(built, tree, manifest["lab"], skip=set(broken) | set(undefined))
     lost = {ex_id: name for name, (_, ids) in flagged.items() for ex_id in ids}
     for r in results:
         if r.exercise["id"] in lost:
@@ -174,6 +182,12 @@ def main():
     return 0
 
 
+def rel(path):
+    """A path as the student typed it: relative to the current folder when inside it."""
+    path = pathlib.Path(path).resolve()
+    return str(path.relative_to(pathlib.Path.cwd())) if path.is_relative_to(pathlib.Path.cwd()) else str(path)
+
+
 def compile_summary(text, name, manifest, tree):
     """The first error of exercise file `name`, placed in it, and its hint (compile_errors.py)."""
     path = f"labs/{manifest['folder']}/{name}"
@@ -190,18 +204,22 @@ def after_failed_build(binary, manifest, tree, args):
     except GradeError as error:
         print(f"springlab: {error}", file=sys.stderr)
         rebuilt = None
-    if rebuilt is not None and rebuilt.broken:
-        names = ", ".join(f"labs/{manifest['folder']}/{n}" for n in sorted(rebuilt.broken))
-        print(f"springlab: {names} {'does' if len(rebuilt.broken) == 1 else 'do'} not compile: check grades the "
-              f"lab's other files beside the skeleton's (the note below says why)", file=sys.stderr)
+    if rebuilt is not None and rebuilt.binary is not None:
+        for files, what in ((rebuilt.broken, "not compile"), (rebuilt.undefined, "not define its functions as "
+                                                                                     "exercises.hpp declares them")):
+            if files:
+                names = ", ".join(f"labs/{manifest['folder']}/{n}" for n in sorted(files))
+                print(f"springlab: {names} {'does' if len(files) == 1 else 'do'} {what}: check grades the lab's other "
+                      f"files beside the skeleton's (the note below says why)", file=sys.stderr)
         return rebuilt
     # Not an exercise file of this lab: the build's first error, then where its full text is.
-    first = summary(text.replace(str(tree) + "/", ""), lambda where: not where.startswith("/usr/"), root=tree)
+    shown = text.replace(str(tree) + "/", "")
+    first = summary(shown, lambda where: not where.startswith("/usr/"), root=tree) or first_errors(shown, 8).splitlines()
     for line in first:
         print(f"  {line}", file=sys.stderr)
     if args.verbose:
         print(text, file=sys.stderr)
-    print(f"springlab: build failed; the compiler's full text: {args.full_text}", file=sys.stderr)
+    print(f"springlab: build failed; the compiler's full text: {args.compiler_text}", file=sys.stderr)
     return None
 
 

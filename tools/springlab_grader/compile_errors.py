@@ -168,3 +168,13 @@ def not_compiling_note(name, exercises, summary_lines, details):
 
 # The message of each test of such a file (it is not run).
 NOT_COMPILING = "{name} does not compile (see the note): graded as the released skeleton's file"
+
+
+def not_defined_note(name, missing):
+    """The note of an exercise file that compiles but lacks a function as the lab's header
+    declares it, the same in `grade` and `check`; its tests fail with NOT_DEFINED."""
+    return (f"{name} does not define {', '.join(missing)} as the lab's exercises.hpp declares "
+            f"{'it' if len(missing) == 1 else 'them'} (a changed signature?), so its exercises score 0")
+
+
+NOT_DEFINED = "{name}: see the note"

@@ -195,7 +195,7 @@ class LabGrader:
                                                        defined.get(str(objects[name]), set()))
                 if error:
                     self.notes.append(error)
-                    failed.update({test: f"{name}: see the note" for test in tests})
+                    failed.update({test: compile_errors.NOT_DEFINED.format(name=name) for test in tests})
                     continue
                 members = [renamed, *(obj for n, obj in solution.items() if n != name)]
                 workers[name] = (members, tests)
@@ -228,9 +228,7 @@ class LabGrader:
         wanted = exercise_symbols(reference, self.lab.name, tuple(functions))
         missing = [function for symbol, function in wanted.items() if symbol not in defined]
         if missing:
-            return None, (f"{name} does not define {', '.join(missing)} as the lab's exercises.hpp declares "
-                          f"{'it' if len(missing) == 1 else 'them'} (a changed signature?), so its exercises "
-                          f"score 0")
+            return None, compile_errors.not_defined_note(name, missing)
         out = self.work / "renamed"
         out.mkdir(exist_ok=True)
         mapping = out / f"{name}.map"

@@ -97,15 +97,35 @@ def stub_source(manifest, name):
 
 @dataclasses.dataclass
 class Rebuilt:
-    binary: pathlib.Path  # the lab's grading program, with stubs for the broken files
-    broken: dict          # {exercise file: the compiler's full text (paths relative to the tree)}
+    binary: pathlib.Path  # the lab's grading program, with stubs in the place of the files below
+    broken: dict          # {exercise file that does not compile: the compiler's full text (paths in the tree)}
+    undefined: dict = dataclasses.field(default_factory=dict)  # {file that compiles: [its functions the link missed]}
+
+
+def function_name(declaration):
+    """The name a manifest declaration ("Vec3 windForce(const Wind& wind, ...)") declares."""
+    return re.search(r"(\w+)\s*\(", declaration)[1]
+
+
+def undefined_functions(linker_text, manifest):
+    """{exercise file: [its functions]} of the exercise functions a failed link did not find
+    (a file that compiles but defines another signature than the header declares)."""
+    lab = manifest["lab"]
+    named = set(re.findall(rf"undefined (?:reference to [`']|symbol: )springlab::{lab}::(\w+)\(", linker_text))
+    found = {}
+    for ex in manifest["exercises"]:
+        for declaration in ex.get("functions", []):
+            if function_name(declaration) in named:
+                found.setdefault(ex["file"], []).append(function_name(declaration))
+    return found
 
 
 def rebuild(build, manifest, tree, jobs=2):
-    """The lab's grading program when some of its exercise files do not compile: the others'
-    objects with a stub of each broken one, linked as CMake links the program. A Rebuilt whose
-    `broken` is empty when every exercise file compiles (the build failed elsewhere: then there
-    is no binary). Raises GradeError when the program cannot be linked."""
+    """The lab's grading program when some of its exercise files do not compile, or compile but
+    do not define their functions as the header declares them: the others' objects with a stub
+    of each such file, linked as CMake links the program. A Rebuilt without a binary when every
+    exercise file compiles and links (the build failed elsewhere). Raises GradeError when the
+    program cannot be linked."""
     build, tree = pathlib.Path(build), pathlib.Path(tree).resolve()
     lab = manifest["lab"]
     compiles = exercise_compiles(build, lab)
@@ -117,41 +137,54 @@ def rebuild(build, manifest, tree, jobs=2):
         outcomes = dict(zip(stale, pool.map(lambda n: compiles[n].run(), stale)))
     prefix = str(tree) + os.sep
     broken = {name: text.replace(prefix, "") for name, (code, text) in outcomes.items() if code != 0}
-    if not broken:
-        return Rebuilt(None, {})
 
-    # Each broken file's stub, compiled with the file's own command.
-    work = build / "check" / lab
-    work.mkdir(parents=True, exist_ok=True)
-    objects = []
-    for name, compile_ in sorted(compiles.items()):
-        if name not in broken:
-            objects.append(compile_.output)
-            continue
-        source, output = work / f"stub_{name}", work / f"stub_{name}.o"
-        source.write_text(stub_source(manifest, name))
-        code, text = compile_.of(source, output).run()
-        if code != 0:
-            raise GradeError(f"the stub check put in the place of {name} does not compile (does "
-                             f"{manifest['folder']}/exercises.hpp match the manifest?):\n{first_errors(text)}")
-        objects.append(output)
-
-    # The link CMake wrote down, with an archive of these objects and the lab's given ones.
+    # The link CMake wrote down, with an archive of the exercise objects and the lab's given ones.
     link = read_link_file(build / "grading" / f"{lab}_link.json")
     needed = [*link.test_objects, *link.main_objects, *link.given_objects,
               *(lib for lib in link.libraries if re.search(r"\.(a|so)$", lib) and os.path.isabs(lib))]
     missing = [path for path in needed if not os.path.exists(path)]
     if missing:
+        if not broken:
+            return Rebuilt(None, {})
         raise GradeError(f"the lab's other parts did not build either (no {missing[0]}"
                          f"{f' and {len(missing) - 1} more' if len(missing) > 1 else ''})")
-    archive, binary = work / f"libcheck_{lab}.a", work / f"{lab}_grading_student"
+    work = build / "check" / lab
+    work.mkdir(parents=True, exist_ok=True)
+    undefined = {}
+    # Twice at most: a link that misses exercise functions of a file stubs that file too.
+    for _ in range(2):
+        stubbed = set(broken) | set(undefined)
+        objects = [stub(compiles[name], manifest, name, work) if name in stubbed else compiles[name].output
+                   for name in sorted(compiles)]
+        binary, text = link_program(link, objects, work / f"{lab}_grading_student")
+        if binary is not None:
+            return Rebuilt(binary, broken, undefined) if stubbed else Rebuilt(None, {})
+        more = {f: fs for f, fs in undefined_functions(text, manifest).items() if f not in stubbed}
+        if not more:
+            break
+        undefined.update(more)
+    raise GradeError(f"the lab's grading program does not link:\n{first_errors(text.replace(prefix, ''))}")
+
+
+def stub(compile_, manifest, name, work):
+    """Exercise file `name`'s stub (stub_source), compiled with the file's own command; its object."""
+    source, output = work / f"stub_{name}", work / f"stub_{name}.o"
+    source.write_text(stub_source(manifest, name))
+    code, text = compile_.of(source, output).run()
+    if code != 0:
+        raise GradeError(f"the stub check puts in the place of {name} does not compile (does the lab's "
+                         f"exercises.hpp match its manifest?):\n{first_errors(text)}")
+    return output
+
+
+def link_program(link, objects, binary):
+    """(the grading program `binary`, "") of these exercise objects with the lab's given ones, or
+    (None, the linker's text)."""
+    archive = binary.with_name(f"lib{binary.name}.a")
     archive.unlink(missing_ok=True)
     run = subprocess.run(["ar", "qcs", str(archive), *map(str, objects), *link.given_objects],
                          capture_output=True, text=True)
     if run.returncode != 0:
         raise GradeError(f"ar: {run.stderr.strip()}")
-    run = subprocess.run(link.argv(archive, binary), cwd=work, capture_output=True, text=True)
-    if run.returncode != 0:
-        raise GradeError(f"the lab's grading program does not link beside the stubs:\n"
-                         f"{first_errors((run.stdout + run.stderr).replace(prefix, ''))}")
-    return Rebuilt(binary, broken)
+    run = subprocess.run(link.argv(archive, binary), cwd=binary.parent, capture_output=True, text=True)
+    return (binary, "") if run.returncode == 0 else (None, run.stdout + run.stderr)
