@@ -810,6 +810,18 @@ class CompileErrorsSayTheFirstErrorWhereTheStudentCanFixIt(Temp):
                 self.assertEqual(lines[1], "    code;")
                 self.assertIn(hint, lines[2])
 
+    def test_grade_places_it_in_the_submitted_file(self):
+        # `grade` compiles src/<file> in its sandbox and shows the file's name only.
+        from springlab_grader import compile_errors  # noqa: PLC0415
+        text = compile_errors.first_errors(GCC_EIGEN_PRODUCT.replace("\\\n", "").replace("labs/02_net/", "src/"))
+        lines = compile_errors.summary(text, lambda path: pathlib.PurePath(path).name == "normals.cpp")
+        self.assertTrue(lines[0].startswith("normals.cpp:10:24: error: static assertion failed"), lines)
+        note = compile_errors.not_compiling_note("normals.cpp", ["2.3"], lines, "The compiler's first errors:\n" + text)
+        self.assertTrue(note.startswith("normals.cpp does not compile, so it is graded as the released skeleton's "
+                                        "normals.cpp: exercise 2.3 scores 0, the other exercises are graded.\n"
+                                        "normals.cpp:10:24: error:"), note)
+        self.assertLess(note.index("hint: "), note.index("The compiler's first errors:"))
+
     def test_no_error_no_summary(self):
         from springlab_grader import compile_errors  # noqa: PLC0415
         self.assertEqual(compile_errors.summary("x.cpp:1:1: warning: unused\n", lambda p: True), [])

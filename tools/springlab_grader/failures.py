@@ -152,7 +152,9 @@ def sentences(message, raw=False, most=3):
     said = {}
     for block in _blocks(message):
         expected, came, words = _said(block)
-        key = (expected, came, " ".join(w.strip() for w in words if w.strip()))
+        # The test's words on one line after a GoogleTest comparison; as written otherwise.
+        kept = [w.rstrip() for w in words if w.strip()]
+        key = (expected, came, " ".join(w.strip() for w in kept) if expected is not None else "\n".join(kept))
         said.setdefault(key, []).append(block)
     out = []
     for (expected, came, words), blocks in list(said.items())[:most]:
