@@ -97,7 +97,8 @@ class LabGrader:
         for name, error in sorted(errors.items()):
             # The first error placed in the file and its hint (the same summary `check` prints),
             # then the compiler's first lines.
-            first = compile_errors.summary(error, lambda path, n=name: pathlib.PurePath(path).name == n)
+            first = compile_errors.summary(error, lambda path, n=name: pathlib.PurePath(path).name == n,
+                                           root=self.work / "src")
             notes.append(compile_errors.not_compiling_note(name, file_exercises.get(name, []), first,
                                                            f"The compiler's first errors:\n{error}"))
             reasons[name] = compile_errors.NOT_COMPILING.format(name=name)
