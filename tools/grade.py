@@ -27,6 +27,7 @@ tools/new_exercise.py reads manifests through it: load_manifest, ManifestError).
 import argparse
 import os
 import pathlib
+import re
 import shutil
 import sys
 import tempfile
@@ -34,7 +35,7 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.call_check import REPLACED  # noqa: E402
-from springlab_grader.compile_errors import NOT_COMPILING, NOT_DEFINED, first_errors, not_compiling_note, not_defined_note, summary  # noqa: E402
+from springlab_grader.compile_errors import NOT_COMPILING, NOT_DEFINED, files_with_errors, first_errors, not_compiling_note, not_defined_note, summary  # noqa: E402
 from springlab_grader.errors import GradeError  # noqa: E402
 from springlab_grader.gtest_runner import check_binary_against_manifest, draw_seed, grade_binary  # noqa: E402
 from springlab_grader.judged_run import bubblewrap, go_without_bubblewrap, starts_in_bubblewrap  # noqa: E402
@@ -199,8 +200,13 @@ def after_failed_build(binary, manifest, tree, args):
     student_build.Rebuilt), or None after saying why there is none: the build failed elsewhere."""
     log = pathlib.Path(args.after_failed_build)
     text = log.read_text(errors="replace") if log.is_file() else ""
+    # The build's paths relative to the tree (ccache's base folder makes them relative to the
+    # build folder: ../labs/...), as the student sees the tree.
+    build = pathlib.Path(binary).parent.parent
+    text = text.replace(str(tree) + "/", "")
+    text = re.sub(rf"(?m)(^|\s){re.escape(os.path.relpath(tree, build))}/", r"\1", text)
     try:
-        rebuilt = rebuild(pathlib.Path(binary).parent.parent, manifest, tree, args.jobs)
+        rebuilt = rebuild(build, manifest, tree, args.jobs)
     except GradeError as error:
         print(f"springlab: {error}", file=sys.stderr)
         rebuilt = None
@@ -211,10 +217,17 @@ def after_failed_build(binary, manifest, tree, args):
                 names = ", ".join(f"labs/{manifest['folder']}/{n}" for n in sorted(files))
                 print(f"springlab: {names} {'does' if len(files) == 1 else 'do'} {what}: check grades the lab's other "
                       f"files beside the skeleton's (the note below says why)", file=sys.stderr)
+        # An error outside the exercise files (a framework file edited): its last build is used,
+        # as the grader uses the framework as shipped; said, not hidden.
+        exercise_paths = {f"labs/{manifest['folder']}/{n}" for n in rebuilt.broken}
+        for path, line in files_with_errors(text):
+            if not any(path.endswith(p) for p in exercise_paths):
+                print(f"springlab: the build also failed outside the lab's exercise files: {line}\n"
+                      f"springlab: {path} is graded as last built (the grader uses the framework as shipped); "
+                      f"the compiler's full text: {args.compiler_text}", file=sys.stderr)
         return rebuilt
     # Not an exercise file of this lab: the build's first error, then where its full text is.
-    shown = text.replace(str(tree) + "/", "")
-    first = summary(shown, lambda where: not where.startswith("/usr/"), root=tree) or first_errors(shown, 8).splitlines()
+    first = summary(text, lambda where: not where.startswith("/usr/"), root=tree) or first_errors(text, 8).splitlines()
     for line in first:
         print(f"  {line}", file=sys.stderr)
     if args.verbose:

@@ -822,6 +822,12 @@ class CompileErrorsSayTheFirstErrorWhereTheStudentCanFixIt(Temp):
                                         "normals.cpp:10:24: error:"), note)
         self.assertLess(note.index("hint: "), note.index("The compiler's first errors:"))
 
+    def test_a_builds_errors_by_file(self):
+        from springlab_grader import compile_errors  # noqa: PLC0415
+        text = GCC_EIGEN_PRODUCT.replace("\\\n", "") + "framework/labs/net/src/net.cpp:3:1: error: 'x' was not declared\n"
+        self.assertEqual([path for path, _ in compile_errors.files_with_errors(text)],
+                         ["framework/labs/net/src/net.cpp"])  # Eigen's own headers are not the student's
+
     def test_no_error_no_summary(self):
         from springlab_grader import compile_errors  # noqa: PLC0415
         self.assertEqual(compile_errors.summary("x.cpp:1:1: warning: unused\n", lambda p: True), [])

@@ -115,6 +115,17 @@ def first_error(output, is_student):
     return None
 
 
+def files_with_errors(output):
+    """The files a compiler's text (a whole build's) reports errors in, in order, without the
+    system's headers: [(path, the first error's line)]."""
+    found = {}
+    for text in output.splitlines():
+        where = _LOCATION.match(text)
+        if where and _ERROR.match(where["rest"]) and not where["path"].startswith("/usr/"):
+            found.setdefault(where["path"], text)
+    return list(found.items())
+
+
 def _placed(lines, i, where, message, inside):
     # A context line ("required from here") quotes no code: the next line is another file's.
     quoted = _quoted(lines, i, 1 if inside else 2)

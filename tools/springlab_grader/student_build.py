@@ -146,7 +146,7 @@ def rebuild(build, manifest, tree, jobs=2):
     if missing:
         if not broken:
             return Rebuilt(None, {})
-        raise GradeError(f"the lab's other parts did not build either (no {missing[0]}"
+        raise GradeError(f"the lab's other parts did not build either (no {os.path.relpath(missing[0], tree)}"
                          f"{f' and {len(missing) - 1} more' if len(missing) > 1 else ''})")
     work = build / "check" / lab
     work.mkdir(parents=True, exist_ok=True)
