@@ -9,6 +9,7 @@ program as CMake wrote its link down (grading/<lab>_link.json, link_file.py). Sh
 student release; nothing here runs student code."""
 import concurrent.futures
 import dataclasses
+import hashlib
 import json
 import os
 import pathlib
@@ -33,10 +34,21 @@ class Compile:
         """Its object exists and is newer than the file (a failed compile leaves the old one)."""
         return self.output.is_file() and self.output.stat().st_mtime_ns >= self.source.stat().st_mtime_ns
 
-    def run(self):
-        """Compile; (exit code, the compiler's text)."""
+    def run(self, remember=None):
+        """Compile; (exit code, the compiler's text). With `remember` (a folder), a compile that
+        failed is remembered there by the file's content and the command, and the same file
+        is not compiled again to learn the same errors (check runs after each edit of another
+        file, each time after make has just failed on this one)."""
         argv = [*self.argv, "-fdiagnostics-color=never"]
+        key = hashlib.sha256(json.dumps(argv).encode() + b"\0" + self.source.read_bytes()).hexdigest()
+        known = pathlib.Path(remember) / f"{self.source.name}.{key[:32]}.failed" if remember else None
+        if known is not None and known.is_file():
+            return 1, known.read_text()
         run = subprocess.run(argv, cwd=self.directory, capture_output=True, text=True, errors="replace")
+        if known is not None and run.returncode != 0:
+            for old in known.parent.glob(f"{self.source.name}.*.failed"):
+                old.unlink()
+            known.write_text(run.stdout + run.stderr)
         return run.returncode, run.stdout + run.stderr
 
     def of(self, source, output):
@@ -132,9 +144,11 @@ def rebuild(build, manifest, tree, jobs=2):
     if not compiles:
         raise GradeError(f"{build}/compile_commands.json: no compile of the {lab} lab's exercise files; "
                          f"configure the build again (./springlab build)")
+    work = build / "check" / lab
+    work.mkdir(parents=True, exist_ok=True)
     stale = [name for name, c in sorted(compiles.items()) if not c.fresh()]
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        outcomes = dict(zip(stale, pool.map(lambda n: compiles[n].run(), stale)))
+        outcomes = dict(zip(stale, pool.map(lambda n: compiles[n].run(remember=work), stale)))
     prefix = str(tree) + os.sep
     broken = {name: text.replace(prefix, "") for name, (code, text) in outcomes.items() if code != 0}
 
@@ -148,13 +162,12 @@ def rebuild(build, manifest, tree, jobs=2):
             return Rebuilt(None, {})
         raise GradeError(f"the lab's other parts did not build either (no {os.path.relpath(missing[0], tree)}"
                          f"{f' and {len(missing) - 1} more' if len(missing) > 1 else ''})")
-    work = build / "check" / lab
-    work.mkdir(parents=True, exist_ok=True)
     undefined = {}
     # Twice at most: a link that misses exercise functions of a file stubs that file too.
     for _ in range(2):
         stubbed = set(broken) | set(undefined)
-        objects = [stub(compiles[name], manifest, name, work) if name in stubbed else compiles[name].output
+        objects = [stub(compiles[name], manifest, name, work, link.given_objects) if name in stubbed
+                   else compiles[name].output
                    for name in sorted(compiles)]
         binary, text = link_program(link, objects, work / f"{lab}_grading_student")
         if binary is not None:
@@ -166,12 +179,23 @@ def rebuild(build, manifest, tree, jobs=2):
     raise GradeError(f"the lab's grading program does not link:\n{first_errors(text.replace(prefix, ''))}")
 
 
-def stub(compile_, manifest, name, work):
+def stub(compile_, manifest, name, work, newer_than=()):
     """Exercise file `name`'s stub (stub_source), compiled with the file's own command; its object."""
     source, output = work / f"stub_{name}", work / f"stub_{name}.o"
-    source.write_text(stub_source(manifest, name))
-    code, text = compile_.of(source, output).run()
-    if code != 0:
+    # Compiled again only when the stub or its command changed, or the lab's headers did (then
+    # the lab's given objects, `newer_than`, were compiled again after it).
+    text, command = stub_source(manifest, name), compile_.of(source, output)
+    stamp = work / f"stub_{name}.command"
+    if (source.is_file() and source.read_text() == text and output.is_file() and stamp.is_file()
+            and stamp.read_text() == json.dumps(command.argv)
+            and all(output.stat().st_mtime_ns >= os.stat(o).st_mtime_ns for o in newer_than)):
+        return output
+    source.write_text(text)
+    stamp.unlink(missing_ok=True)
+    code, text = command.run()
+    if code == 0:
+        stamp.write_text(json.dumps(command.argv))
+    else:
         raise GradeError(f"the stub check puts in the place of {name} does not compile (does the lab's "
                          f"exercises.hpp match its manifest?):\n{first_errors(text)}")
     return output
