@@ -16,8 +16,9 @@ import tempfile
 import threading
 import time
 
-from . import integrity
+from . import compile_errors, integrity
 from .build_cache import Cache
+from .compile_errors import first_errors
 from .errors import GradeError
 from .gtest_runner import Budget, BudgetRule, draw_seed, grade_binary, grade_judged
 from .labs import ROOT, discover_labs, exercises_in
@@ -94,11 +95,13 @@ class LabGrader:
         objects, errors = self.compile_all(files, changed)
         self.timing["compile"] = time.monotonic() - mark
         for name, error in sorted(errors.items()):
-            lost = ", ".join(file_exercises.get(name, [])) or "none"
-            notes.append(f"{name} does not compile, so it is graded as the released skeleton's {name}: "
-                         f"exercise {lost} scores 0, the other exercises are graded. "
-                         f"The compiler's first errors:\n{error}")
-            reasons[name] = f"{name} does not compile (see the note): graded as the released skeleton's file"
+            # The first error placed in the file and its hint (the same summary `check` prints),
+            # then the compiler's first lines.
+            first = compile_errors.summary(error, lambda path, n=name: pathlib.PurePath(path).name == n,
+                                           root=self.work / "src")
+            notes.append(compile_errors.not_compiling_note(name, file_exercises.get(name, []), first,
+                                                           f"The compiler's first errors:\n{error}"))
+            reasons[name] = compile_errors.NOT_COMPILING.format(name=name)
         solution = self.object_map(build.link.solution_objects)
         skeleton_objects = self.object_map(build.link.skeleton_objects)
         per_file = bool(solution) and all(n in solution and n in skeleton_objects for n in skeleton)
@@ -193,7 +196,7 @@ class LabGrader:
                                                        defined.get(str(objects[name]), set()))
                 if error:
                     self.notes.append(error)
-                    failed.update({test: f"{name}: see the note" for test in tests})
+                    failed.update({test: compile_errors.NOT_DEFINED.format(name=name) for test in tests})
                     continue
                 members = [renamed, *(obj for n, obj in solution.items() if n != name)]
                 workers[name] = (members, tests)
@@ -226,9 +229,7 @@ class LabGrader:
         wanted = exercise_symbols(reference, self.lab.name, tuple(functions))
         missing = [function for symbol, function in wanted.items() if symbol not in defined]
         if missing:
-            return None, (f"{name} does not define {', '.join(missing)} as the lab's exercises.hpp declares "
-                          f"{'it' if len(missing) == 1 else 'them'} (a changed signature?), so its exercises "
-                          f"score 0")
+            return None, compile_errors.not_defined_note(name, missing)
         out = self.work / "renamed"
         out.mkdir(exist_ok=True)
         mapping = out / f"{name}.map"
@@ -401,14 +402,6 @@ def reference_symbols(path):
     """The strong symbols of a reference exercise object, read once per version of the file."""
     stat = os.stat(path)
     return _symbols(str(path), (stat.st_mtime_ns, stat.st_size))
-
-
-def first_errors(output, lines=25):
-    """The compiler's first error lines, paths shortened to the file names students know."""
-    text = re.sub(r"(^|\s)(?:\S*/)?src/", r"\1", output)
-    keep = [line for line in text.splitlines() if line.strip()]
-    first = next((i for i, line in enumerate(keep) if "error" in line), 0)
-    return "\n".join(keep[max(0, first - 2):first + lines])
 
 
 # ---- one submission --------------------------------------------------------------------------
