@@ -429,6 +429,25 @@ class ObjectCacheChecksItsEntries(Temp):
         cache.store("huge", huge, self.tmp / "a.d")
         self.assertIsNone(cache.fetch("huge", out, "a.cpp"))
 
+    def test_a_compile_is_reused_only_where_its_include_places_are_allowed(self):
+        # An object's dependency file names the places its compile read headers from. Sealed,
+        # those are the sandbox's neutral paths, the same for every grader; without bubblewrap
+        # they are each grader's own staged copies, which another grader's include check does
+        # not allow: it must compile again, never take the other's object (which would grade an
+        # honest file as the skeleton's for "including a file outside the framework").
+        from springlab_grader import lab_grader, sealed_compile  # noqa: PLC0415
+        cache = build_cache.ObjectCache(self.tmp / "cache")
+        inside = sealed_compile.NEUTRAL / "framework/include"
+
+        def key(staged, sealed):
+            compiler = sealed_compile.SealedCompiler(["g++"], [(self.tmp / staged, inside)], ["g++"], sealed)
+            return lab_grader.object_key(cache, ["g++", "-O2"], compiler, "wind.cpp", b"code", b"headers")
+
+        self.assertEqual(key("stage-a", True), key("stage-b", True))
+        self.assertNotEqual(key("stage-a", False), key("stage-b", False))
+        self.assertEqual(key("stage-a", False), key("stage-a", False))
+        self.assertNotEqual(key("stage-a", True), key("stage-a", False))
+
 class CallLayerFromTheManifest(Temp):
     """tools/make_call_layer.py: the worker's record and forward files and the judge's replay
     files follow the manifest's exercise files and declarations, one function per name."""

@@ -46,6 +46,18 @@ COMPILE_BUDGET = 90.0
 LAB_WALL_LIMIT = 270.0
 
 
+def object_key(objects, compile_argv, sealed, name, data, headers):
+    """The object cache's key of one exercise file's compile. It holds the places the compile
+    reads its include folders from: an object's dependency file names them, and the include
+    check reads them. Sealed, those are the neutral paths inside the sandbox (the same for
+    every grader of this tree); without bubblewrap they are this grader's own staged copies
+    under /tmp, so a compile is reused only by the grader that staged them (another grader's
+    object would name folders this one does not allow, and its file would be graded as the
+    skeleton's)."""
+    shown = [str(place) for place in sealed.include_folders()] + [str(sealed.sealed)]
+    return objects.key(compile_argv + ["-Isrc"] + shown, name, data, headers)
+
+
 class LabGrader:
     """One lab of one submission. Points follow the exercise: for each exercise file F, a
     grading program links the student's F with the reference's objects of every other file
@@ -292,12 +304,7 @@ class LabGrader:
     def compile_one(self, name, data, headers):
         """Compile src/<name> to an object in the compiler's sandbox (sealed_compile.py), or
         reuse the same compile of an earlier submission."""
-        flags = self.build.compile_argv + ["-Isrc"]
-        # The key holds where the sandbox shows each include folder too: an object's dependency
-        # file names those places, and the include check reads them (a tree elsewhere, as a
-        # Gradescope bundle is, may show the same folders at other places).
-        shown = [str(inside) for _, inside in self.build.sealed.binds] + [str(self.build.sealed.sealed)]
-        key = self.cache.objects.key(flags + shown, name, data, headers)
+        key = object_key(self.cache.objects, self.build.compile_argv, self.build.sealed, name, data, headers)
         private = self.work / "objects"  # the grader's copies, out of the sandbox user's reach
         private.mkdir(exist_ok=True)
         cached = self.cache.objects.fetch(key, private, name)
