@@ -27,11 +27,11 @@ function(springlab_gtest_from_source dir)
 endfunction()
 
 # Whether a GoogleTest program links against the installed GoogleTest with this compiler and
-# flags (cmake/gtest_check, a project of its own). Cached per compiler and flags, so a second
-# configure costs nothing; another compiler or other flags check again.
+# flags (cmake/gtest_check, a project of its own). A success is cached per compiler and flags,
+# so a second configure costs nothing; a failure checks again (a GoogleTest installed since).
 function(springlab_installed_gtest_links result)
-  set(key "${CMAKE_CXX_COMPILER};${CMAKE_CXX_FLAGS};${CMAKE_EXE_LINKER_FLAGS};${CMAKE_PREFIX_PATH};${GTest_DIR}")
-  if(DEFINED SPRINGLAB_GTEST_LINKS_KEY AND SPRINGLAB_GTEST_LINKS_KEY STREQUAL key)
+  set(key "${CMAKE_CXX_COMPILER};${CMAKE_CXX_FLAGS};${CMAKE_EXE_LINKER_FLAGS};${CMAKE_PREFIX_PATH};${GTest_DIR};${CMAKE_TOOLCHAIN_FILE}")
+  if(SPRINGLAB_GTEST_LINKS AND SPRINGLAB_GTEST_LINKS_KEY STREQUAL key)
     set(${result} ${SPRINGLAB_GTEST_LINKS} PARENT_SCOPE)
     return()
   endif()
@@ -44,6 +44,8 @@ function(springlab_installed_gtest_links result)
                           "-DCMAKE_BUILD_TYPE=${CMAKE_BUILD_TYPE}"
                           "-DCMAKE_PREFIX_PATH=${CMAKE_PREFIX_PATH}"
                           "-DGTest_DIR=${GTest_DIR}"
+                          "-DCMAKE_TOOLCHAIN_FILE=${CMAKE_TOOLCHAIN_FILE}"
+                          "-DVCPKG_TARGET_TRIPLET=${VCPKG_TARGET_TRIPLET}"
               OUTPUT_VARIABLE output)
   file(WRITE ${CMAKE_BINARY_DIR}/springlab-gtest-check.log "${output}")
   # Not linking, or not installed at all: the check project's configure says which.
@@ -87,15 +89,20 @@ if(SPRINGLAB_BUILD_TESTS)
       springlab_gtest_from_source(${gtest_source_dir})
       set(SPRINGLAB_GTEST_FROM "built from ${gtest_source_dir}")
     else()
-      if(SPRINGLAB_GTEST_INSTALLED)
-        message(WARNING "GoogleTest: the installed GoogleTest does not link with "
-                "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} and these flags "
-                "(${CMAKE_CXX_FLAGS}), and no GoogleTest sources were found to build it from: "
-                "set -DSPRINGLAB_GTEST_SOURCE=<a GoogleTest source tree> (Debian/Ubuntu: package "
-                "googletest, in /usr/src/googletest). The linker's messages are in "
-                "${CMAKE_BINARY_DIR}/springlab-gtest-check.log")
+      # No sources to fall back on: the installed GoogleTest as before the check (the check
+      # itself may be what fails, on a platform it does not know), or none.
+      find_package(GTest QUIET)
+      if(GTest_FOUND)
+        set(SPRINGLAB_GTEST_FROM "installed")
+        message(WARNING "GoogleTest: a test program did not link against the installed GoogleTest "
+                "with ${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} and the flags "
+                "'${CMAKE_CXX_FLAGS}' (${CMAKE_BINARY_DIR}/springlab-gtest-check.log), and no "
+                "GoogleTest sources were found to build it from: the tests may not link. Set "
+                "-DSPRINGLAB_GTEST_SOURCE=<a GoogleTest source tree> (Debian/Ubuntu: package "
+                "googletest, in /usr/src/googletest).")
+      else()
+        list(APPEND SPRINGLAB_MISSING gtest)
       endif()
-      list(APPEND SPRINGLAB_MISSING gtest)
     endif()
   endif()
 endif()
