@@ -91,6 +91,10 @@ class ManifestErrorsNameFileAndField(Temp):
                                                               {**lab.manifest, "builds_on": ["cloth"]}))
         with self.assertRaisesRegex(errors.GradeError, r"02_net/exercises.json: builds_on: 'cloth' is not another lab's id"):
             labs.discover_labs(self.tmp)
+        net = json.loads((self.tmp / "tests" / "02_net" / "exercises.json").read_text())
+        (self.tmp / "tests" / "02_net" / "exercises.json").write_text(json.dumps({**net, "builds_on": "rope"}))
+        with self.assertRaisesRegex(errors.GradeError, r"02_net/exercises.json: builds_on: must be a list of lab ids"):
+            labs.discover_labs(self.tmp)
         self.assertEqual([lab.manifest.get("builds_on", []) for lab in labs.discover_labs()], [[], ["rope"], ["rope"]])
 
 

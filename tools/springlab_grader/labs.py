@@ -15,7 +15,8 @@ from .errors import GradeError
 from .manifest import ManifestError, load_manifest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]  # the tree this grader belongs to
-FOLDER = re.compile(r"^(\d\d)_([a-z][a-z0-9_]*)$")
+LAB_ID = r"[a-z][a-z0-9_]*"
+FOLDER = re.compile(rf"^(\d\d)_({LAB_ID})$")
 DECLARATION = re.compile(r"^(?P<ret>[^()]+?)\s+(?P<name>[A-Za-z_]\w*)\((?P<params>.*)\)$")
 
 
@@ -72,7 +73,7 @@ def check_layout(data, path):
         need(data, key, str)
     # The labs whose exercises this lab's scenes run too (the rope's integrators); optional.
     builds_on = data.get("builds_on", [])
-    if not (isinstance(builds_on, list) and all(isinstance(b, str) and FOLDER.match(f"00_{b}") for b in builds_on)):
+    if not (isinstance(builds_on, list) and all(isinstance(b, str) and re.fullmatch(LAB_ID, b) for b in builds_on)):
         raise GradeError(f"{path}: builds_on: must be a list of lab ids ([\"rope\"])")
     for type_name, fields in need(data, "values", dict).items():
         if not (isinstance(fields, list) and fields and all(isinstance(f, str) for f in fields)):
