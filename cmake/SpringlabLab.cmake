@@ -1,12 +1,20 @@
-# springlab_read_manifests(): the labs of the tree, one per manifest tests/NN_<id>/exercises.json
-# (the one list of labs, exercises, files, functions and points; tools/springlab_grader/labs.py
-# reads the same files for the grader and the `springlab` script). Sets, in the caller's scope:
+# springlab_read_manifests([ROOT dir]): the labs of the tree at ROOT (default: the source
+# folder), one per manifest tests/NN_<id>/exercises.json (the one list of labs, exercises,
+# files, functions and points; tools/springlab_grader/labs.py reads the same files for the
+# grader and the `springlab` script). Sets, in the caller's scope:
 #   SPRINGLAB_LAB_IDS            the labs' ids in the order of their folders (rope;net;softbody)
 #   SPRINGLAB_LAB_<id>_DIR       the lab's folder in labs/, solutions/, tests/ (01_rope)
 #   SPRINGLAB_LAB_<id>_FILES     its exercise files, one per exercise (spring_force.cpp;...)
+#   SPRINGLAB_LAB_<id>_BUILDS_ON the labs whose exercises its scenes run too (the manifest's
+#                                "builds_on": the net's and the soft body's scenes offer the
+#                                rope's integrators), before the lab itself in a program
 # Editing a manifest re-runs CMake. A malformed one stops the configure naming file and field.
 function(springlab_read_manifests)
-  file(GLOB manifests CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/*/exercises.json)
+  cmake_parse_arguments(READ "" "ROOT" "" ${ARGN})
+  if(NOT READ_ROOT)
+    set(READ_ROOT ${CMAKE_SOURCE_DIR})
+  endif()
+  file(GLOB manifests CONFIGURE_DEPENDS ${READ_ROOT}/tests/*/exercises.json)
   list(SORT manifests)
   set(ids "")
   foreach(manifest IN LISTS manifests)
@@ -37,14 +45,52 @@ function(springlab_read_manifests)
         list(APPEND files ${file})
       endforeach()
     endif()
+    # "builds_on": optional, a list of lab ids; checked against the labs below, once all are read.
+    set(builds_on "")
+    string(JSON kind ERROR_VARIABLE error TYPE "${text}" builds_on)
+    if(NOT error)
+      string(JSON count ERROR_VARIABLE error LENGTH "${text}" builds_on)
+      if(NOT kind STREQUAL "ARRAY" OR error)
+        message(FATAL_ERROR "${manifest}: builds_on: must be a list of lab ids ([\"rope\"])")
+      endif()
+      if(count GREATER 0)
+        math(EXPR last "${count} - 1")
+        foreach(i RANGE ${last})
+          string(JSON base GET "${text}" builds_on ${i})
+          list(APPEND builds_on ${base})
+        endforeach()
+      endif()
+    endif()
+    set(builds_on_${id} ${builds_on})
+    set(manifest_of_${id} ${manifest})
     list(APPEND ids ${id})
     set(SPRINGLAB_LAB_${id}_DIR ${folder} PARENT_SCOPE)
     set(SPRINGLAB_LAB_${id}_FILES ${files} PARENT_SCOPE)
+    set(SPRINGLAB_LAB_${id}_BUILDS_ON ${builds_on} PARENT_SCOPE)
   endforeach()
   if(NOT ids)
-    message(FATAL_ERROR "${CMAKE_SOURCE_DIR}/tests: no NN_<lab>/exercises.json manifests: no labs to build")
+    message(FATAL_ERROR "${READ_ROOT}/tests: no NN_<lab>/exercises.json manifests: no labs to build")
   endif()
+  foreach(id IN LISTS ids)
+    foreach(base IN LISTS builds_on_${id})
+      if(NOT base IN_LIST ids OR base STREQUAL id)
+        message(FATAL_ERROR "${manifest_of_${id}}: builds_on: '${base}' is not another lab's id (${ids})")
+      endif()
+    endforeach()
+  endforeach()
   set(SPRINGLAB_LAB_IDS ${ids} PARENT_SCOPE)
+endfunction()
+
+# springlab_write_register(FILE LABS): FILE registers LABS (a program's labs) with the
+# registry, from framework/app/register_labs.cpp.in; the desktop and the browser programs.
+function(springlab_write_register file labs)
+  set(register_calls "")
+  set(register_includes "")
+  foreach(name IN LISTS labs)
+    string(APPEND register_includes "#include <springlab/${name}/${name}.hpp>\n")
+    string(APPEND register_calls "  springlab::${name}::registerLab(registry);\n")
+  endforeach()
+  configure_file(${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../framework/app/register_labs.cpp.in ${file} @ONLY)
 endfunction()
 
 # springlab_exercise_files(OUT LAB TREE): the paths of lab LAB's exercise files in TREE (labs or

@@ -21,6 +21,27 @@ function(springlab_vendored_version dir out)
   set(${out} "vendored ${line}" PARENT_SCOPE)
 endfunction()
 
+# Whether a program using `target` (an installed library's imported target) links with this
+# compiler and flags: a C++ library is built for one standard library, so a clang + libc++
+# build (-stdlib=libc++) finds Debian's libstdc++-built copy and fails only when linking. Then
+# the vendored copy serves instead. `code` is the program's body, after the library's #include.
+# A success is cached per compiler and flags; a failure is checked again at each configure.
+function(springlab_system_library_links result name target include code)
+  set(key "${CMAKE_CXX_COMPILER};${CMAKE_CXX_FLAGS};${CMAKE_EXE_LINKER_FLAGS};${target}")
+  if(SPRINGLAB_${name}_LINKS AND SPRINGLAB_${name}_LINKS_KEY STREQUAL key)
+    set(${result} TRUE PARENT_SCOPE)
+    return()
+  endif()
+  set(dir ${CMAKE_BINARY_DIR}/CMakeFiles/springlab_${name}_check)
+  file(WRITE ${dir}/links.cpp "#include <${include}>\nint main() {\n${code}\n}\n")
+  try_compile(links ${dir}/build SOURCES ${dir}/links.cpp LINK_LIBRARIES ${target}
+              CXX_STANDARD 20 OUTPUT_VARIABLE output)
+  file(WRITE ${CMAKE_BINARY_DIR}/springlab-${name}-check.log "${output}")
+  set(SPRINGLAB_${name}_LINKS ${links} CACHE INTERNAL "the system's ${name} links with this compiler")
+  set(SPRINGLAB_${name}_LINKS_KEY "${key}" CACHE INTERNAL "compiler and flags of SPRINGLAB_${name}_LINKS")
+  set(${result} ${links} PARENT_SCOPE)
+endfunction()
+
 # ---- tinyobjloader ---------------------------------------------------------------------------
 # Only a double-precision build is taken from the system (Debian's tinyobjloader_double, or a
 # build exporting TINYOBJLOADER_USE_DOUBLE, e.g. vcpkg's "double" feature), so that a mesh
@@ -33,9 +54,18 @@ function(springlab_third_party_tinyobjloader)
       if(TARGET ${candidate})
         get_target_property(definitions ${candidate} INTERFACE_COMPILE_DEFINITIONS)
         if(candidate MATCHES "_double$" OR "TINYOBJLOADER_USE_DOUBLE" IN_LIST definitions)
-          target_link_libraries(springlab_tinyobjloader INTERFACE ${candidate})
-          set(SPRINGLAB_TINYOBJLOADER_FROM "system (${candidate})" PARENT_SCOPE)
-          return()
+          # (A std::string crosses into the library: the call a libc++ build cannot link.)
+          springlab_system_library_links(links tinyobjloader ${candidate} tiny_obj_loader.h
+            "tinyobj::ObjReader reader; return reader.ParseFromString(std::string(\"v 0 0 0\\n\"), std::string()) ? 0 : 1;")
+          if(links)
+            target_link_libraries(springlab_tinyobjloader INTERFACE ${candidate})
+            set(SPRINGLAB_TINYOBJLOADER_FROM "system (${candidate})" PARENT_SCOPE)
+            return()
+          endif()
+          message(STATUS "tinyobjloader: the system's (${candidate}) does not link with ${CMAKE_CXX_COMPILER_ID} "
+                         "${CMAKE_CXX_COMPILER_VERSION} and the flags '${CMAKE_CXX_FLAGS}' (another standard "
+                         "library?; springlab-tinyobjloader-check.log): using the vendored copy")
+          break()
         endif()
       endif()
     endforeach()

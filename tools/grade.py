@@ -15,6 +15,9 @@ their own code (`grade` decides with a judge that runs none of it).
     tools/grade.py --binary build/tests/rope_grading_student --manifest tests/01_rope/exercises.json
     tools/grade.py ... --expect-percent 100        exit 1 unless the score is exactly 100 %
     tools/grade.py ... --out DIR                   also write report.md, results.json, junit.xml
+    tools/grade.py ... --after-failed-build LOG    the binary's build failed (its log: LOG): grade
+                                                   beside the exercise files that do not compile
+    tools/grade.py ... --verbose                   the compiler's and GoogleTest's full text too
     tools/grade.py --manifest M --check-handout H  check every points statement of the handout
                                                    (tools/handout_check.py)
 
@@ -24,6 +27,7 @@ tools/new_exercise.py reads manifests through it: load_manifest, ManifestError).
 import argparse
 import os
 import pathlib
+import re
 import shutil
 import sys
 import tempfile
@@ -31,14 +35,17 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from springlab_grader.call_check import REPLACED  # noqa: E402
+from springlab_grader.compile_errors import NOT_COMPILING, NOT_DEFINED, files_with_errors, first_errors, not_compiling_note, not_defined_note, summary  # noqa: E402
+from springlab_grader.errors import GradeError  # noqa: E402
 from springlab_grader.gtest_runner import check_binary_against_manifest, draw_seed, grade_binary  # noqa: E402
 from springlab_grader.judged_run import bubblewrap, go_without_bubblewrap, starts_in_bubblewrap  # noqa: E402
 from springlab_grader.manifest import ManifestError, load_manifest  # noqa: E402
 from springlab_grader.reports import print_lab, write_outputs  # noqa: E402
 from springlab_grader.platforms import classroom_error, classroom_output_line, classroom_result  # noqa: E402
-from springlab_grader.results import LabResult  # noqa: E402
+from springlab_grader.results import LabResult, TestResult  # noqa: E402
 from springlab_grader.sandbox import TIMEOUT, Sandbox  # noqa: E402
-from springlab_grader.student_check import forbidden_call_notes  # noqa: E402
+from springlab_grader.student_build import rebuild  # noqa: E402
+from springlab_grader.student_check import exercises_by_file, forbidden_call_notes  # noqa: E402
 
 
 def main():
@@ -53,6 +60,13 @@ def main():
     ap.add_argument("--out", help="folder for report.md, results.json and junit.xml")
     ap.add_argument("--check-handout", help="check the handout's headings against the manifest and exit")
     ap.add_argument("--quiet", action="store_true", help="print only the summary")
+    ap.add_argument("--after-failed-build", metavar="LOG",
+                    help="the build of --binary failed (LOG: its output): grade as `grade` does beside exercise "
+                         "files that do not compile, each graded as the skeleton's (student_build.py)")
+    ap.add_argument("--verbose", action="store_true",
+                    help="under each summary, the compiler's full text and GoogleTest's own failure text")
+    ap.add_argument("--again", default="tools/grade.py ...",
+                    help="the command that runs this check again (said with --verbose where full texts are left out)")
     ap.add_argument("--classroom", metavar="FILE",
                     help="also append this lab's public result for GitHub Classroom's reporter to FILE "
                          "($GITHUB_OUTPUT): result=<base64 JSON>; a program that is missing (the lab does not "
@@ -78,6 +92,19 @@ def main():
     if not args.binary:
         ap.error("--binary is required")
     binary = str(pathlib.Path(args.binary).resolve())  # tests run in their own folders
+    # Where the full texts left out of the report are: the compiler's also in the build's log.
+    args.full_text = f"{args.again} --verbose"
+    args.compiler_text = args.full_text + (f", or {rel(args.after_failed_build)}" if args.after_failed_build else "")
+    tree = pathlib.Path(args.manifest).resolve().parents[2]
+    # The build failed: each exercise file that does not compile (or does not define its
+    # functions as declared) is graded as the skeleton's. The call check reads the objects of
+    # the build's program (`built`).
+    built, broken, undefined = binary, {}, {}
+    if args.after_failed_build:
+        rebuilt = after_failed_build(binary, manifest, tree, args)
+        if rebuilt is None:
+            return 2
+        binary, broken, undefined = str(rebuilt.binary), rebuilt.broken, rebuilt.undefined
     # The workers' seccomp filter, as `grade` gives it (built beside the grading programs).
     seccomp = args.seccomp or str(pathlib.Path(binary).with_name("springlab_worker_seccomp"))
     if not os.access(binary, os.X_OK):
@@ -113,17 +140,37 @@ def main():
     seed = draw_seed(args.seed)
     print(f"{manifest['title']}: grading {shown} (SPRINGLAB_SEED={seed})")
     started = time.monotonic()
-    results = grade_binary(binary, manifest, seed, sandbox, args.jobs, present, seccomp=seccomp)
+    # A file that does not compile or define its functions: its exercises' tests are not run,
+    # and fail with grade's words.
+    exercises = exercises_by_file(tree, manifest["folder"])
+    stubbed = {ex_id: NOT_COMPILING.format(name=name) for name in broken for ex_id in exercises.get(name, [])}
+    stubbed.update({ex_id: NOT_DEFINED.format(name=name) for name in undefined for ex_id in exercises.get(name, [])})
+    run = {t["name"] for ex in manifest["exercises"] if ex["id"] not in stubbed for t in ex["tests"]}
+    results = grade_binary(binary, manifest, seed, sandbox, args.jobs, present, seccomp=seccomp, only=run)
+    results += [TestResult(ex, t, False, stubbed[ex["id"]], 0.0)
+                for ex in manifest["exercises"] if ex["id"] in stubbed for t in ex["tests"]
+                if t["name"] in present or t["visibility"] == "visible"]
+    order = {t["name"]: i for i, t in enumerate(t for ex in manifest["exercises"] for t in ex["tests"])}
+    results.sort(key=lambda r: order[r.test["name"]])
+    notes = [not_compiling_note(name, exercises.get(name, []), compile_summary(broken[name], name, manifest, tree),
+                                f"The compiler's full text:\n{text}" if args.verbose else
+                                f"The compiler's full text: {args.compiler_text}")
+             for name, text in sorted(broken.items())]
+    notes += [not_defined_note(name, functions) for name, functions in sorted(undefined.items())]
     # The call check `grade` makes: a file that calls what exercise code may not scores as the
     # skeleton's there, so here too, with the same sentence.
-    flagged = forbidden_call_notes(shown, pathlib.Path(args.manifest).resolve().parents[2], manifest["lab"])
+    flagged = forbidden_call_notes(built, tree, manifest["lab"], skip=set(broken) | set(undefined))
     lost = {ex_id: name for name, (_, ids) in flagged.items() for ex_id in ids}
     for r in results:
         if r.exercise["id"] in lost:
             r.passed, r.message = False, REPLACED.format(name=lost[r.exercise["id"]])
-    lab = LabResult(manifest, results, [note for note, _ in flagged.values()], seed=seed,
+    lab = LabResult(manifest, results, notes + [note for note, _ in flagged.values()], seed=seed,
                     seconds=time.monotonic() - started)
-    print_lab(lab, quiet=args.quiet)
+    # Failures as sentences (what was expected, what came, what to check), GoogleTest's own
+    # text with --verbose.
+    print_lab(lab, quiet=args.quiet, sentences=True, raw=args.verbose)
+    if not args.quiet and not args.verbose and any(not r.passed and r.message for r in lab.results):
+        print(f"(GoogleTest's own text of each failure: {args.full_text})")
     if args.out:
         write_outputs(args.out, [lab], manifest["title"], lab.seconds, seed)
     if args.classroom:
@@ -134,6 +181,59 @@ def main():
         print(f"expected {args.expect_percent:g} %, got {percent:.1f} %", file=sys.stderr)
         return 1
     return 0
+
+
+def rel(path):
+    """A path as the student typed it: relative to the current folder when inside it."""
+    path = pathlib.Path(path).resolve()
+    return str(path.relative_to(pathlib.Path.cwd())) if path.is_relative_to(pathlib.Path.cwd()) else str(path)
+
+
+def compile_summary(text, name, manifest, tree):
+    """The first error of exercise file `name`, placed in it, and its hint (compile_errors.py)."""
+    path = f"labs/{manifest['folder']}/{name}"
+    return summary(text, lambda where: where == path or where.endswith("/" + path), root=tree)
+
+
+def after_failed_build(binary, manifest, tree, args):
+    """The lab's grading program rebuilt beside the exercise files that do not compile (a
+    student_build.Rebuilt), or None after saying why there is none: the build failed elsewhere."""
+    log = pathlib.Path(args.after_failed_build)
+    text = log.read_text(errors="replace") if log.is_file() else ""
+    # The build's paths relative to the tree (ccache's base folder makes them relative to the
+    # build folder: ../labs/...), as the student sees the tree.
+    build = pathlib.Path(binary).parent.parent
+    text = text.replace(str(tree) + "/", "")
+    text = re.sub(rf"(?m)(^|\s){re.escape(os.path.relpath(tree, build))}/", r"\1", text)
+    try:
+        rebuilt = rebuild(build, manifest, tree, args.jobs)
+    except GradeError as error:
+        print(f"springlab: {error}", file=sys.stderr)
+        rebuilt = None
+    if rebuilt is not None and rebuilt.binary is not None:
+        for files, what in ((rebuilt.broken, "not compile"), (rebuilt.undefined, "not define its functions as "
+                                                                                     "exercises.hpp declares them")):
+            if files:
+                names = ", ".join(f"labs/{manifest['folder']}/{n}" for n in sorted(files))
+                print(f"springlab: {names} {'does' if len(files) == 1 else 'do'} {what}: check grades the lab's other "
+                      f"files beside the skeleton's (the note below says why)", file=sys.stderr)
+        # An error outside the exercise files (a framework file edited): its last build is used,
+        # as the grader uses the framework as shipped; said, not hidden.
+        exercise_paths = {f"labs/{manifest['folder']}/{n}" for n in rebuilt.broken}
+        for path, line in files_with_errors(text):
+            if not any(path.endswith(p) for p in exercise_paths):
+                print(f"springlab: the build also failed outside the lab's exercise files: {line}\n"
+                      f"springlab: {path} is graded as last built (the grader uses the framework as shipped); "
+                      f"the compiler's full text: {args.compiler_text}", file=sys.stderr)
+        return rebuilt
+    # Not an exercise file of this lab: the build's first error, then where its full text is.
+    first = summary(text, lambda where: not where.startswith("/usr/"), root=tree) or first_errors(text, 8).splitlines()
+    for line in first:
+        print(f"  {line}", file=sys.stderr)
+    if args.verbose:
+        print(text, file=sys.stderr)
+    print(f"springlab: build failed; the compiler's full text: {args.compiler_text}", file=sys.stderr)
+    return None
 
 
 if __name__ == "__main__":

@@ -294,7 +294,13 @@ def stability(folder):
     for x, r, m, p, u in zip(xs, rows, measured, predictions, undamped):
         colour, marker = style(r["integrator"], x)
         shown = m if 0 < m < inf else top
-        ax.scatter([x], [shown], marker=marker, s=90, color=colour, zorder=4)
+        if 0 < m < inf:
+            ax.scatter([x], [shown], marker=marker, s=90, color=colour, zorder=4)
+        else:
+            # No limit found: every trial survived, so the limit lies above the largest dt
+            # tried. An arrow up off the chart, not a point a reader would take for a limit.
+            ax.annotate("", xy=(x, top * 3.5), xytext=(x, top / 2.5), zorder=4,
+                        arrowprops=dict(arrowstyle="-|>", color=colour, lw=2.2, mutation_scale=18))
         # The undamped rule c / w_max, dashed, where the method has one: how far damping,
         # contacts and pressure move the limit.
         if 0 < u < inf:
@@ -303,7 +309,7 @@ def stability(folder):
         # short lines: it stays within the column and never covers a marker or a bar.
         if p == inf:
             # Stable at every dt the prediction tried: say what the bisection found.
-            text = "predicted: no limit;\nnone found" if m == inf else f"predicted: no limit;\nfails at {m:.3g} s"
+            text = "predicted: no limit;\nnone found (the arrow:\nabove every trial dt)" if m == inf else f"predicted: no limit;\nfails at {m:.3g} s"
             above = shown
         elif p > 0:
             ax.hlines(p, x - 0.35, x + 0.35, color="black", lw=2)
@@ -312,7 +318,10 @@ def stability(folder):
         else:
             text = "predicted: no\nstable dt"
             above = shown
-        ax.annotate(text, (x, above), textcoords="offset points", xytext=(0, 10), ha="center", va="bottom",
+        # Under the arrow where no limit was found (the arrow fills the room above).
+        below = not 0 < m < inf
+        ax.annotate(text, (x, top / 2.5 if below else above), textcoords="offset points", xytext=(0, -6 if below else 10),
+                    ha="center", va="top" if below else "bottom",
                     fontsize=7.5, color="0.15" if 0 < p < inf else "0.35")
     # Legend proxies: the marker of each method is its measured dt, the bar the prediction.
     # Above the axes, so it covers no column.

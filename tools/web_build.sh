@@ -50,8 +50,10 @@ if ! command -v emcc >/dev/null || ! command -v emcmake >/dev/null; then
 fi
 
 # ---- which labs, and the scene the page opens on ---------------------------------------------
-# A scene's lab is its "lab" key; every lab when none is named.
-all_labs=(rope net softbody)
+# A scene's lab is its "lab" key; every lab of the manifests (tests/NN_<id>/) when none is named.
+table="$(python3 "$ROOT/tools/lab_table.py")" || exit 2
+all_labs=()
+while read -r id _; do all_labs+=("$id"); done <<<"$table"
 labs=()
 default_scene=rope.json
 for t in "${targets[@]}"; do

@@ -26,7 +26,7 @@ void Registry::addScene(const std::string& lab, SceneFactory factory, Resolution
 }
 
 LoadedScene Registry::loadScene(const SceneDocument& document) const {
-  SceneReader reader = SceneReader::fromText(document.json.dump(), document.file);
+  SceneReader reader = SceneReader::fromJson(document.json, document.file);
   return loadScene(reader);
 }
 

@@ -25,15 +25,20 @@ SceneReader SceneReader::fromFile(const std::string& path) {
 SceneReader SceneReader::fromText(const std::string& text, const std::string& file) {
   // Parse here so the message can name the file. JSON has no NaN literal, so a "NaN" in a
   // scene file is reported as malformed JSON.
-  std::shared_ptr<nlohmann::json> root;
+  nlohmann::json root;
   try {
-    root = std::make_shared<nlohmann::json>(nlohmann::json::parse(text));
+    root = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw SceneError(file + ": malformed JSON: " + e.what());
   }
-  if (!root->is_object()) throw SceneError(file + ": the scene must be a JSON object {...}");
-  const nlohmann::json* node = root.get();
-  return SceneReader(std::move(root), node, std::make_shared<const std::string>(file), "");
+  return fromJson(std::move(root), file);
+}
+
+SceneReader SceneReader::fromJson(nlohmann::json root, const std::string& file) {
+  if (!root.is_object()) throw SceneError(file + ": the scene must be a JSON object {...}");
+  auto shared = std::make_shared<const nlohmann::json>(std::move(root));
+  const nlohmann::json* node = shared.get();
+  return SceneReader(std::move(shared), node, std::make_shared<const std::string>(file), "");
 }
 
 std::string SceneReader::where(const std::string& key) const {

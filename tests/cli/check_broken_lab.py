@@ -1,10 +1,15 @@
 #!/usr/bin/env python3
-"""A compile error in one lab stops only that lab: in a student tree (tools/release.py) whose
-Lab 1 exercises are written (the reference's copied in) and whose Lab 2 has a syntax error,
-`./springlab sim` and `run` of a Lab 1 scene build and run, `./springlab check rope` scores
-every point, a Lab 3 scene still builds and runs, while `run net` fails with the compiler's
-error naming the broken file. The tree is configured by the script itself, as a student's
-first command does, so CMake's configure must not trip on the broken file either.
+"""A compile error stops only what it must: in a student tree (tools/release.py) whose Lab 1
+exercises are written (the reference's copied in) and whose Lab 2 has one file that does not
+compile (normals.cpp multiplies two Vec3 with `a * b`), `./springlab sim` and `run` of a Lab 1
+scene build and run, `./springlab check rope` scores every point, a Lab 3 scene still builds and
+runs, and `run net` fails with the compiler's error naming the broken file. `check net` grades
+the lab as `grade` would: normals.cpp costs exercise 2.3 only, the other files' tests run and
+score (2.1 written: its public points), the compiler's first error comes first, placed at
+normals.cpp's line with a hint, and its full text only with --verbose; a failed test (2.2 with a
+sign error) reads as what was expected, what came and what to check, GoogleTest's own text
+only with --verbose. The tree is configured by the script itself, as a student's first command
+does, so CMake's configure must not trip on the broken file either.
 
     check_broken_lab.py --work DIR     (run by ctest; DIR keeps the tree and its build/)
 
@@ -12,6 +17,7 @@ DIR/tree is rewritten file by file, and only where a file's content changed, so 
 folder stays warm and a rerun rebuilds nothing but the broken file.
 """
 import argparse
+import json
 import os
 import pathlib
 import shutil
@@ -59,9 +65,20 @@ def main():
         print(release.stdout + release.stderr)
         return 1
     overrides = {f"labs/01_rope/{p.name}": p.read_text() for p in sorted((ROOT / "solutions" / "01_rope").glob("*.cpp"))}
-    broken = sorted((staging / "labs" / "02_net").glob("*.cpp"))[0]
-    broken_rel = f"labs/02_net/{broken.name}"
-    overrides[broken_rel] = broken.read_text() + "\nthis line is not C++\n"
+    # Lab 2: 2.1 written, 2.2 with a sign error, 2.3 (normals.cpp) with a cross product written
+    # as a * b, which Eigen refuses at compile time.
+    net = ROOT / "solutions" / "02_net"
+    overrides["labs/02_net/build_net.cpp"] = (net / "build_net.cpp").read_text()
+    force = (net / "spring_force.cpp").read_text()
+    overrides["labs/02_net/spring_force.cpp"] = force.replace("(-springConstant *", "(springConstant *")
+    normals = (net / "normals.cpp").read_text()
+    cross = "(pos[t.b] - pos[t.a]).cross(pos[t.c] - pos[t.a])"
+    broken_rel = "labs/02_net/normals.cpp"
+    overrides[broken_rel] = normals.replace(cross, "(pos[t.b] - pos[t.a]) * (pos[t.c] - pos[t.a])")
+    broken_line = 1 + normals[:normals.index(cross)].count("\n")
+    if overrides["labs/02_net/spring_force.cpp"] == force or overrides[broken_rel] == normals:
+        print("the reference's spring_force.cpp or normals.cpp changed: update this test's edits")
+        return 1
     tree.mkdir(parents=True, exist_ok=True)
     sync(staging, tree, overrides)
 
@@ -111,10 +128,35 @@ def main():
     proc, text = springlab("run", "net", "--frames", "2")
     expect("run net", proc, text, proc.returncode != 0, broken_rel, "build failed")
 
+    # check net grades beside the broken file: 2.3 scores 0, 2.1 its public points; the summary
+    # (file:line, the hint, where the full text is) comes first, the compiler's text only with
+    # --verbose; 2.2's failure reads as sentences, GoogleTest's text only with --verbose.
+    manifest = json.loads((tree / "tests" / "02_net" / "exercises.json").read_text())
+    build_points = sum(t["points"] for ex in manifest["exercises"] if ex["id"] == "2.1"
+                       for t in ex["tests"] if t["visibility"] == "visible")
+    summary = f"{broken_rel}:{broken_line}:"
+    proc, text = springlab("check", "net")
+    expect("check net", proc, text, proc.returncode == 0,
+           "normals.cpp does not compile, so it is graded as the released skeleton's normals.cpp: exercise 2.3 "
+           "scores 0", summary, "hint: a * b of two Vec3 is no product Eigen defines: use a.dot(b)",
+           "The compiler's full text: ./springlab check net --verbose, or build/check-net.log",
+           f"public {build_points}/{build_points}", "expected: ", "came: ", "check: ",
+           "GoogleTest's own text of each failure: ./springlab check net --verbose")
+    for needle in ("required from", "In instantiation of", "GoogleTest: "):
+        if needle in text:
+            failures.append(f"check net: {needle!r} without --verbose\n{text[-4000:]}")
+    if summary in text and "Exercise 2.1" in text and text.index("Exercise 2.1") < text.index(summary):
+        failures.append(f"check net: the compile summary comes after the exercises\n{text[-4000:]}")
+    proc, text = springlab("check", "net", "--verbose")
+    expect("check net --verbose", proc, text, proc.returncode == 0, summary, "required from", "GoogleTest: ")
+    if summary in text and "required from" in text and text.index("required from") < text.index(summary):
+        failures.append(f"check net --verbose: the compiler's text comes before the summary\n{text[:4000]}")
+
     for failure in failures:
         print(f"FAILED: {failure}", file=sys.stderr)
     if not failures:
-        print(f"with {broken_rel} broken: rope runs and scores 100 %, softbody runs, net names the file")
+        print(f"with {broken_rel} broken: rope runs and scores 100 %, softbody runs, net names the file, and "
+              f"check net scores the other files with the first error and a hint first")
     return 1 if failures else 0
 
 

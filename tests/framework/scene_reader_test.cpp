@@ -81,6 +81,28 @@ TEST(SceneReader, MissingFileIsNamed) {
   }
 }
 
+// A document parsed once (a scene after its --set edits) reads as its text would: the same
+// values, the same messages naming the file.
+TEST(SceneReader, ParsedDocumentReadsAsItsText) {
+  const std::string text = rope(R"("mass": 0.05)");
+  SceneReader fromJson = SceneReader::fromJson(nlohmann::json::parse(text), "scenes/edited.json");
+  SceneReader ropeSection = fromJson.object("rope");
+  EXPECT_EQ(ropeSection.number("mass"), 0.05);
+  try {
+    ropeSection.positive("spring_friction_missing");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("scenes/edited.json: rope.spring_friction_missing: missing key"), std::string::npos)
+        << e.what();
+  }
+  try {
+    SceneReader::fromJson(nlohmann::json::array(), "scenes/list.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("scenes/list.json: the scene must be a JSON object"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SceneReader, ArraysOfObjectsNameEachElement) {
   SceneReader r = SceneReader::fromText(R"({"body": {"obstacles": [{"radius": 1}, {"radius": -2}], "none": []}})", "scenes/x.json");
   SceneReader body = r.object("body");

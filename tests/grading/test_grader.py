@@ -81,6 +81,22 @@ class ManifestErrorsNameFileAndField(Temp):
         for lab in labs.discover_labs():
             self.assertEqual(manifest.check_handout(lab.manifest, ROOT / lab.manifest["handout"]), [])
 
+    def test_builds_on_names_other_labs(self):
+        # The programs of a lab register the labs it builds on (the rope's integrators in the
+        # net's scenes); an id that names no other lab stops with the file and the field.
+        for lab in labs.discover_labs():
+            folder = self.tmp / "tests" / lab.dir
+            folder.mkdir(parents=True)
+            (folder / "exercises.json").write_text(json.dumps(lab.manifest if lab.name != "net" else
+                                                              {**lab.manifest, "builds_on": ["cloth"]}))
+        with self.assertRaisesRegex(errors.GradeError, r"02_net/exercises.json: builds_on: 'cloth' is not another lab's id"):
+            labs.discover_labs(self.tmp)
+        net = json.loads((self.tmp / "tests" / "02_net" / "exercises.json").read_text())
+        (self.tmp / "tests" / "02_net" / "exercises.json").write_text(json.dumps({**net, "builds_on": "rope"}))
+        with self.assertRaisesRegex(errors.GradeError, r"02_net/exercises.json: builds_on: must be a list of lab ids"):
+            labs.discover_labs(self.tmp)
+        self.assertEqual([lab.manifest.get("builds_on", []) for lab in labs.discover_labs()], [[], ["rope"], ["rope"]])
+
 
 class HiddenMessagesShowNoValues(unittest.TestCase):
     def test_gtest_value_lines_dropped(self):
@@ -416,6 +432,25 @@ class ObjectCacheChecksItsEntries(Temp):
             f.truncate(build_cache.ObjectCache.OBJECT_LIMIT + 1)
         cache.store("huge", huge, self.tmp / "a.d")
         self.assertIsNone(cache.fetch("huge", out, "a.cpp"))
+
+    def test_a_compile_is_reused_only_where_its_include_places_are_allowed(self):
+        # An object's dependency file names the places its compile read headers from. Sealed,
+        # those are the sandbox's neutral paths, the same for every grader; without bubblewrap
+        # they are each grader's own staged copies, which another grader's include check does
+        # not allow: it must compile again, never take the other's object (which would grade an
+        # honest file as the skeleton's for "including a file outside the framework").
+        from springlab_grader import lab_grader, sealed_compile  # noqa: PLC0415
+        cache = build_cache.ObjectCache(self.tmp / "cache")
+        inside = sealed_compile.NEUTRAL / "framework/include"
+
+        def key(staged, sealed):
+            compiler = sealed_compile.SealedCompiler(["g++"], [(self.tmp / staged, inside)], ["g++"], sealed)
+            return lab_grader.object_key(cache, ["g++", "-O2"], compiler, "wind.cpp", b"code", b"headers")
+
+        self.assertEqual(key("stage-a", True), key("stage-b", True))
+        self.assertNotEqual(key("stage-a", False), key("stage-b", False))
+        self.assertEqual(key("stage-a", False), key("stage-a", False))
+        self.assertNotEqual(key("stage-a", True), key("stage-a", False))
 
 class CallLayerFromTheManifest(Temp):
     """tools/make_call_layer.py: the worker's record and forward files and the judge's replay
@@ -755,6 +790,116 @@ class SymlinkedLabFolders(Temp):
                 self.assertIsNone(found[lab.dir])
                 self.assertTrue(any("symbolic link" in n and "refused" in n for n in notes), notes)
                 self.assertFalse(any(str(self.tmp) in n for n in notes), notes)
+
+
+# GCC 12's text for `const Vec3 n = a * b;` on two Vec3 (line 10 of normals.cpp), cut short: the
+# error is in Eigen's header, the student's line only in "required from here" before it.
+GCC_EIGEN_PRODUCT = """In file included from /usr/include/eigen3/Eigen/Core:164,
+                 from /t/framework/labs/net/include/springlab/net/exercises.hpp:13,
+                 from /t/labs/02_net/normals.cpp:1:
+/usr/include/eigen3/Eigen/src/Core/GeneralProduct.h: In instantiation of 'const Eigen::Product<...>':
+labs/02_net/normals.cpp:10:24:   required from here
+/usr/include/eigen3/Eigen/src/Core/GeneralProduct.h:415:3: error: static assertion failed: \
+INVALID_VECTOR_VECTOR_PRODUCT__IF_YOU_WANTED_A_DOT_OR_COEFF_WISE_PRODUCT_YOU_MUST_USE_THE_EXPLICIT_FUNCTIONS
+  415 |   EIGEN_STATIC_ASSERT(ProductIsValid || !(AreVectors && SameSizes),
+      |   ^~~~~~~~~~~~~~~~~~~
+/usr/include/eigen3/Eigen/src/Core/CwiseBinaryOp.h:115:7: error: static assertion failed: YOU_MIXED_MATRICES
+"""
+# Clang places the student's line after the error, as a note.
+CLANG_EIGEN_PRODUCT = """/usr/include/eigen3/Eigen/src/Core/GeneralProduct.h:415:3: error: static assertion failed due to \
+requirement '...': INVALID_VECTOR_VECTOR_PRODUCT__IF_YOU_WANTED_A_DOT_OR_COEFF_WISE_PRODUCT
+labs/02_net/normals.cpp:10:24: note: in instantiation of function template specialization requested here
+    const Vec3 n = a * b;
+"""
+
+
+class CompileErrorsSayTheFirstErrorWhereTheStudentCanFixIt(Temp):
+    def is_normals(self, path):
+        return path.endswith("labs/02_net/normals.cpp")
+
+    def test_eigen_error_is_placed_at_the_students_line_with_the_hint(self):
+        from springlab_grader import compile_errors  # noqa: PLC0415
+        (self.tmp / "labs" / "02_net").mkdir(parents=True)
+        (self.tmp / "labs" / "02_net" / "normals.cpp").write_text("\n" * 9 + "    const Vec3 n = a * b;\n")
+        for text in (GCC_EIGEN_PRODUCT.replace("\\\n", ""), CLANG_EIGEN_PRODUCT.replace("\\\n", "")):
+            lines = compile_errors.summary(text, self.is_normals, root=self.tmp)
+            self.assertTrue(lines[0].startswith("labs/02_net/normals.cpp:10:24: error: static assertion failed"), lines)
+            self.assertIn("(inside GeneralProduct.h, from this line)", lines[0])
+            self.assertEqual(lines[1].strip(), "const Vec3 n = a * b;")
+            self.assertIn("use a.dot(b) (a number), a.cross(b) (a Vec3) or a.cwiseProduct(b)", lines[2])
+
+    def test_common_errors_have_their_hints_and_others_the_general_one(self):
+        from springlab_grader import compile_errors  # noqa: PLC0415
+        cases = {"'foo' was not declared in this scope": "a name the compiler does not know",
+                 "no return statement in function returning non-void [-Werror=return-type]": "without `return`",
+                 "expected ';' before 'normals'": "a `;` is missing",
+                 "'const Vec3' has no member named 'length'": "v.norm()",
+                 "no matching function for call to 'f(int)'": "compare their number and types",
+                 "assignment of read-only location 'pos[0]'": "something const",
+                 "something no table knows": compile_errors.HINT_ELSE}
+        for message, hint in cases.items():
+            text = f"labs/01_rope/x.cpp:3:5: error: {message}\n    3 |   code;\n"
+            with self.subTest(message):
+                lines = compile_errors.summary(text, lambda p: p.endswith("x.cpp"))
+                self.assertEqual(lines[0], f"labs/01_rope/x.cpp:3:5: error: {message}")
+                self.assertEqual(lines[1], "    code;")
+                self.assertIn(hint, lines[2])
+
+    def test_grade_places_it_in_the_submitted_file(self):
+        # `grade` compiles src/<file> in its sandbox and shows the file's name only.
+        from springlab_grader import compile_errors  # noqa: PLC0415
+        text = compile_errors.first_errors(GCC_EIGEN_PRODUCT.replace("\\\n", "").replace("labs/02_net/", "src/"))
+        lines = compile_errors.summary(text, lambda path: pathlib.PurePath(path).name == "normals.cpp")
+        self.assertTrue(lines[0].startswith("normals.cpp:10:24: error: static assertion failed"), lines)
+        note = compile_errors.not_compiling_note("normals.cpp", ["2.3"], lines, "The compiler's first errors:\n" + text)
+        self.assertTrue(note.startswith("normals.cpp does not compile, so it is graded as the released skeleton's "
+                                        "normals.cpp: exercise 2.3 scores 0, the other exercises are graded.\n"
+                                        "normals.cpp:10:24: error:"), note)
+        self.assertLess(note.index("hint: "), note.index("The compiler's first errors:"))
+
+    def test_a_builds_errors_by_file(self):
+        from springlab_grader import compile_errors  # noqa: PLC0415
+        text = GCC_EIGEN_PRODUCT.replace("\\\n", "") + "framework/labs/net/src/net.cpp:3:1: error: 'x' was not declared\n"
+        self.assertEqual([path for path, _ in compile_errors.files_with_errors(text)],
+                         ["framework/labs/net/src/net.cpp"])  # Eigen's own headers are not the student's
+
+    def test_no_error_no_summary(self):
+        from springlab_grader import compile_errors  # noqa: PLC0415
+        self.assertEqual(compile_errors.summary("x.cpp:1:1: warning: unused\n", lambda p: True), [])
+
+
+class FailedChecksReadAsSentences(unittest.TestCase):
+    def test_each_kind_of_assertion(self):
+        from springlab_grader.failures import sentences  # noqa: PLC0415
+        cases = [
+            ("Expected equality of these values:\n  normals.size()\n    Which is: 0\n  net.pos.size()\n"
+             "    Which is: 16\none normal per mass",
+             ["expected: normals.size() equal to net.pos.size()", "came:     normals.size() = 0, net.pos.size() = 16",
+              "check:    one normal per mass"]),
+            ("Expected: (err) < (1e-12), actual: 1.4142135623730951 vs 1e-12\nunit normals",
+             ["expected: err below 1e-12", "came:     err = 1.41421", "check:    unit normals"]),
+            ("The difference between total and surface is 0.25, which exceeds 1e-12, where\ntotal evaluates to 1.25,\n"
+             "surface evaluates to 1, and\n1e-12 evaluates to 9.9999999999999998e-13.\na third of each area",
+             ["expected: total within 1e-12 of surface = 1", "came:     total = 1.25 (a difference of 0.25)",
+              "check:    a third of each area"]),
+            ("Value of: std::isfinite(x)\n  Actual: false\nExpected: true\nstays finite",
+             ["expected: std::isfinite(x) to be true", "came:     false", "check:    stays finite"]),
+            ('C++ exception with description "index 7 out of range" thrown in the test body.',
+             ["expected: no exception", "came:     an exception: index 7 out of range"]),
+            ('C++ exception with description "not implemented: exercise 2.3" thrown in the test body.',
+             ["not implemented: exercise 2.3"]),
+        ]
+        for raw, said in cases:
+            with self.subTest(raw.splitlines()[0]):
+                self.assertEqual(sentences(raw).splitlines(), said)
+                verbose = sentences(raw, raw=True)
+                self.assertIn("GoogleTest: " + raw.splitlines()[0], verbose)
+
+    def test_a_repeated_failure_is_said_once_and_unknown_text_kept(self):
+        from springlab_grader.failures import sentences  # noqa: PLC0415
+        one = "Expected: (e) < (0.1), actual: 2 vs 0.1\nsmall"
+        self.assertEqual(sentences(one + "\n" + one).splitlines()[1], "came:     e = 2 (2 times)")
+        self.assertEqual(sentences("the rope sags by 3 cm"), "the rope sags by 3 cm")
 
 
 if __name__ == "__main__":

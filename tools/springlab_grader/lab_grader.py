@@ -16,8 +16,9 @@ import tempfile
 import threading
 import time
 
-from . import integrity
+from . import compile_errors, integrity
 from .build_cache import Cache
+from .compile_errors import first_errors
 from .errors import GradeError
 from .gtest_runner import Budget, BudgetRule, draw_seed, grade_binary, grade_judged
 from .labs import ROOT, discover_labs, exercises_in
@@ -43,6 +44,18 @@ BUDGET_FLOOR = 120.0
 # under five minutes. An honest lab takes under a minute cold on an idle machine.
 COMPILE_BUDGET = 90.0
 LAB_WALL_LIMIT = 270.0
+
+
+def object_key(objects, compile_argv, sealed, name, data, headers):
+    """The object cache's key of one exercise file's compile. It holds the places the compile
+    reads its include folders from: an object's dependency file names them, and the include
+    check reads them. Sealed, those are the neutral paths inside the sandbox (the same for
+    every grader of this tree); without bubblewrap they are this grader's own staged copies
+    under /tmp, so a compile is reused only by the grader that staged them (another grader's
+    object would name folders this one does not allow, and its file would be graded as the
+    skeleton's)."""
+    shown = [str(place) for place in sealed.include_folders()] + [str(sealed.sealed)]
+    return objects.key(compile_argv + ["-Isrc"] + shown, name, data, headers)
 
 
 class LabGrader:
@@ -94,11 +107,13 @@ class LabGrader:
         objects, errors = self.compile_all(files, changed)
         self.timing["compile"] = time.monotonic() - mark
         for name, error in sorted(errors.items()):
-            lost = ", ".join(file_exercises.get(name, [])) or "none"
-            notes.append(f"{name} does not compile, so it is graded as the released skeleton's {name}: "
-                         f"exercise {lost} scores 0, the other exercises are graded. "
-                         f"The compiler's first errors:\n{error}")
-            reasons[name] = f"{name} does not compile (see the note): graded as the released skeleton's file"
+            # The first error placed in the file and its hint (the same summary `check` prints),
+            # then the compiler's first lines.
+            first = compile_errors.summary(error, lambda path, n=name: pathlib.PurePath(path).name == n,
+                                           root=self.work / "src")
+            notes.append(compile_errors.not_compiling_note(name, file_exercises.get(name, []), first,
+                                                           f"The compiler's first errors:\n{error}"))
+            reasons[name] = compile_errors.NOT_COMPILING.format(name=name)
         solution = self.object_map(build.link.solution_objects)
         skeleton_objects = self.object_map(build.link.skeleton_objects)
         per_file = bool(solution) and all(n in solution and n in skeleton_objects for n in skeleton)
@@ -193,7 +208,7 @@ class LabGrader:
                                                        defined.get(str(objects[name]), set()))
                 if error:
                     self.notes.append(error)
-                    failed.update({test: f"{name}: see the note" for test in tests})
+                    failed.update({test: compile_errors.NOT_DEFINED.format(name=name) for test in tests})
                     continue
                 members = [renamed, *(obj for n, obj in solution.items() if n != name)]
                 workers[name] = (members, tests)
@@ -226,9 +241,7 @@ class LabGrader:
         wanted = exercise_symbols(reference, self.lab.name, tuple(functions))
         missing = [function for symbol, function in wanted.items() if symbol not in defined]
         if missing:
-            return None, (f"{name} does not define {', '.join(missing)} as the lab's exercises.hpp declares "
-                          f"{'it' if len(missing) == 1 else 'them'} (a changed signature?), so its exercises "
-                          f"score 0")
+            return None, compile_errors.not_defined_note(name, missing)
         out = self.work / "renamed"
         out.mkdir(exist_ok=True)
         mapping = out / f"{name}.map"
@@ -291,12 +304,7 @@ class LabGrader:
     def compile_one(self, name, data, headers):
         """Compile src/<name> to an object in the compiler's sandbox (sealed_compile.py), or
         reuse the same compile of an earlier submission."""
-        flags = self.build.compile_argv + ["-Isrc"]
-        # The key holds where the sandbox shows each include folder too: an object's dependency
-        # file names those places, and the include check reads them (a tree elsewhere, as a
-        # Gradescope bundle is, may show the same folders at other places).
-        shown = [str(inside) for _, inside in self.build.sealed.binds] + [str(self.build.sealed.sealed)]
-        key = self.cache.objects.key(flags + shown, name, data, headers)
+        key = object_key(self.cache.objects, self.build.compile_argv, self.build.sealed, name, data, headers)
         private = self.work / "objects"  # the grader's copies, out of the sandbox user's reach
         private.mkdir(exist_ok=True)
         cached = self.cache.objects.fetch(key, private, name)
@@ -401,14 +409,6 @@ def reference_symbols(path):
     """The strong symbols of a reference exercise object, read once per version of the file."""
     stat = os.stat(path)
     return _symbols(str(path), (stat.st_mtime_ns, stat.st_size))
-
-
-def first_errors(output, lines=25):
-    """The compiler's first error lines, paths shortened to the file names students know."""
-    text = re.sub(r"(^|\s)(?:\S*/)?src/", r"\1", output)
-    keep = [line for line in text.splitlines() if line.strip()]
-    first = next((i for i, line in enumerate(keep) if "error" in line), 0)
-    return "\n".join(keep[max(0, first - 2):first + lines])
 
 
 # ---- one submission --------------------------------------------------------------------------

@@ -15,7 +15,8 @@ from .errors import GradeError
 from .manifest import ManifestError, load_manifest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]  # the tree this grader belongs to
-FOLDER = re.compile(r"^(\d\d)_([a-z][a-z0-9_]*)$")
+LAB_ID = r"[a-z][a-z0-9_]*"
+FOLDER = re.compile(rf"^(\d\d)_({LAB_ID})$")
 DECLARATION = re.compile(r"^(?P<ret>[^()]+?)\s+(?P<name>[A-Za-z_]\w*)\((?P<params>.*)\)$")
 
 
@@ -70,6 +71,10 @@ def check_layout(data, path):
         raise GradeError(f"{path}: lab: '{data['lab']}' is not the id in the folder's name ('{match[2]}')")
     for key in ("handout", "scene"):
         need(data, key, str)
+    # The labs whose exercises this lab's scenes run too (the rope's integrators); optional.
+    builds_on = data.get("builds_on", [])
+    if not (isinstance(builds_on, list) and all(isinstance(b, str) and re.fullmatch(LAB_ID, b) for b in builds_on)):
+        raise GradeError(f"{path}: builds_on: must be a list of lab ids ([\"rope\"])")
     for type_name, fields in need(data, "values", dict).items():
         if not (isinstance(fields, list) and fields and all(isinstance(f, str) for f in fields)):
             raise GradeError(f"{path}: values.{type_name}: must be the list of the struct's fields")
@@ -103,6 +108,12 @@ def discover_labs(root=ROOT):
         labs.append(Lab(manifest["lab"], manifest["folder"], manifest))
     if not labs:
         raise GradeError(f"{root / 'tests'}: no NN_<lab>/exercises.json manifests: no labs")
+    ids = [lab.name for lab in labs]
+    for lab in labs:
+        for base in lab.manifest.get("builds_on", []):
+            if base not in ids or base == lab.name:
+                raise GradeError(f"{root / 'tests' / lab.dir / 'exercises.json'}: builds_on: '{base}' is not "
+                                 f"another lab's id ({', '.join(ids)})")
     return labs
 
 

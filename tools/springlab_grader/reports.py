@@ -6,10 +6,14 @@ import pathlib
 import sys
 import xml.etree.ElementTree as ET
 
+from .failures import sentences as failure_sentences
 from .results import split_text
 
 
-def print_lab(lab, quiet=False, file=sys.stdout):
+def print_lab(lab, quiet=False, file=sys.stdout, sentences=False, raw=False):
+    """The terminal report of a lab. `sentences` (check): each failed test's message as what was
+    expected, what came and what to check (failures.sentences), GoogleTest's own text under it
+    with `raw`."""
     m = lab.manifest
     for note in lab.notes:
         print(f"  note: {note}".replace("\n", "\n        "), file=file)
@@ -21,7 +25,8 @@ def print_lab(lab, quiet=False, file=sys.stdout):
                 print(f"    {'PASS' if r.passed else 'FAIL'} {r.score:g}/{r.test['points']:g}  {r.test['name']}"
                       + ("" if r.test["visibility"] == "visible" else f"  ({r.test['visibility']})"), file=file)
                 if r.message and not r.passed:
-                    print("           " + r.message.replace("\n", "\n           "), file=file)
+                    message = failure_sentences(r.message, raw=raw) if sentences else r.message
+                    print("           " + message.replace("\n", "\n           "), file=file)
     percent = 100.0 * lab.score / lab.max_score if lab.max_score else 0.0
     print(f"{m['title']}: {lab.score:g} / {lab.max_score:g} points ({percent:.1f} %; {split_text(lab.split())})",
           file=file)

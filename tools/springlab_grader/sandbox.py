@@ -14,6 +14,8 @@ import tempfile
 import time
 
 TIMEOUT = 20.0  # seconds per test; each takes well under a second
+# What a run keeps of its output: this many bytes of its beginning and as many of its end.
+KEPT = 8192
 
 
 @dataclasses.dataclass
@@ -50,7 +52,7 @@ class Run:
     """What one sandboxed process did."""
     returncode: int | None  # None: killed at the time limit
     seconds: float
-    output: str             # stdout and stderr, the end of it
+    output: str             # stdout and stderr: its first and last KEPT bytes
     cpu_seconds: float = 0.0  # its CPU time and that of the processes it waited for
 
 
@@ -129,12 +131,15 @@ def run_sandboxed(argv, sandbox, env_extra=None, cwd=None):
             reap(proc)
             cpu = sandbox.timeout  # stopped at the wall-time limit: it costs the limit
         seconds = time.monotonic() - start
+        # Its beginning and its end: a compiler's first error comes first (Eigen's templates can
+        # follow it for many kilobytes), a crashed test's last words come last.
         log.seek(0, os.SEEK_END)
         size = log.tell()
-        log.seek(max(0, size - 8192))
-        output = log.read().decode("utf-8", "replace")
-        if size > 8192:
-            output = f"[... {size - 8192} bytes of output left out ...]\n" + output
+        log.seek(0)
+        head = log.read(min(size, KEPT)).decode("utf-8", "replace")
+        log.seek(max(KEPT, size - KEPT))
+        end = log.read().decode("utf-8", "replace")
+        output = head + (f"\n[... {size - 2 * KEPT} bytes of output left out ...]\n" if size > 2 * KEPT else "") + end
         log.close()
         return Run(code, seconds, output, cpu)
 

@@ -2,12 +2,11 @@
 exercise objects of a student's own build are read for calls exercise code never needs, and a
 file that makes one is reported with the sentence `grade` prints, its exercises' tests failed
 as `grade` fails them. So a student learns the rule from `check`, never from a lost grade."""
-import json
 import pathlib
 import re
-import shlex
 
 from . import call_check
+from .student_build import exercise_compiles
 
 _TABLE_ROW = re.compile(r"^\|\s*(\d+\.\d+)\s*\|[^|]*\|\s*`([^`]+\.cpp)`\s*\|", re.M)
 
@@ -18,19 +17,10 @@ def exercise_objects(binary):
     springlab_<lab>_student_objects or _solution_objects); {} when they cannot be found."""
     binary = pathlib.Path(binary)
     match = re.fullmatch(r"(\w+)_grading_(student|reference)", binary.name)
-    commands = binary.parent.parent / "compile_commands.json"
-    if not match or not commands.is_file():
+    if not match:
         return {}
-    target = f"springlab_{match[1]}_{'student' if match[2] == 'student' else 'solution'}_objects.dir/"
-    found = {}
-    for entry in json.loads(commands.read_text()):
-        argv = shlex.split(entry.get("command", ""))
-        if target not in entry.get("command", "") or "-o" not in argv:
-            continue
-        output = pathlib.Path(entry.get("directory", ".")) / argv[argv.index("-o") + 1]
-        if output.is_file():
-            found[pathlib.Path(entry["file"]).name] = output
-    return found
+    compiles = exercise_compiles(binary.parent.parent, match[1], match[2])
+    return {name: c.output for name, c in compiles.items() if c.output.is_file()}
 
 
 def exercises_by_file(tree, lab_dir):
@@ -47,10 +37,10 @@ def exercises_by_file(tree, lab_dir):
     return table
 
 
-def forbidden_call_notes(binary, tree, lab_dir):
+def forbidden_call_notes(binary, tree, lab_dir, skip=()):
     """{exercise file: (the note grade prints, its exercise ids)} of the files that call what
-    exercise code may not."""
-    objects = exercise_objects(binary)
+    exercise code may not (`skip`: files not to read, such as those that did not compile)."""
+    objects = {name: obj for name, obj in exercise_objects(binary).items() if name not in skip}
     if not objects:
         return {}
     undefined = call_check.symbols_by_file(list(objects.values()), undefined=True)

@@ -25,6 +25,9 @@ class SceneReader {
   static SceneReader fromFile(const std::string& path);
   // Read from JSON text already in memory (tests); `file` names it in messages.
   static SceneReader fromText(const std::string& text, const std::string& file);
+  // Read a document already parsed (a SceneDocument after its --set edits), without printing
+  // and parsing it again; SceneError naming `file` when it is not a JSON object.
+  static SceneReader fromJson(nlohmann::json root, const std::string& file);
 
   // Typed reads of one key of this object; each marks the key as known.
   double number(const std::string& key);            // any finite number

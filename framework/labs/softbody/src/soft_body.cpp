@@ -210,11 +210,21 @@ Bounds SoftBody::reach() const {
 std::vector<Observable> SoftBody::observables() const {
   const bool flat = dimension == 2;
   const double v = volume(state);
+  // How high the body is (y is up in every scene): its centre of mass, which shows a bounce,
+  // and its lowest mass, which shows the contact (0 on the floor, below it while pressed in).
+  double weighted = 0.0, total = 0.0, lowest = state.pos.empty() ? 0.0 : state.pos[0].y();
+  for (int i = 0; i < numOfMasses(); ++i) {
+    weighted += masses[i].m * state.pos[i].y();
+    total += masses[i].m;
+    lowest = std::min(lowest, state.pos[i].y());
+  }
   return {
       {flat ? "area" : "volume", flat ? "m^2" : "m^3", v},
       {"pressure", flat ? "N/m" : "Pa", pressure(state)},
       {"rest_volume_ratio", "", restVolume_ > 0.0 ? v / restVolume_ : 0.0},
       {"gas nRT", "J", p_.gas > 0.0 ? gas() : 0.0},
+      {"center_height", "m", total > 0.0 ? weighted / total : 0.0},
+      {"lowest_point", "m", lowest},
   };
 }
 

@@ -1,0 +1,3 @@
+// Compiles only where clang finds libc++ (tests/portability/CMakeLists.txt asks).
+#include <string>
+std::string probe;
