@@ -245,9 +245,13 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     } else if (sim.suppliesEnergy() || anchorsMoved(sim, last_)) {
       // Energy comes in (wind, pump, a moving anchor): the ceiling follows it up.
       passiveCeiling_ = std::max(passiveCeiling_, e.total());
-    } else if (e.total() > passiveCeiling_ + passivityAllowance() && beyondLimitOrMeasured(sim, dt)) {
+    } else if (sim.integrator().restsAtStaticEquilibrium() && e.total() > passiveCeiling_ + passivityAllowance() &&
+               beyondLimitOrMeasured(sim, dt)) {
       // Detector 3, passivity: nothing puts energy in, yet the total energy rose above the
-      // ceiling by more than the integrator's own oscillation.
+      // ceiling by more than the integrator's own oscillation. Not for a method that rests
+      // away from the springs' equilibrium (XPBD from zero multipliers, projective dynamics):
+      // the scene's spring energy is not its own, and it rests calmly holding more of it
+      // (the 8 x 8 fabric under XPBD at 50 ms: +0.008 J above its flat start, at rest).
       std::ostringstream os;
       os << "passivity: the total energy rose to " << e.total() << " J, " << e.total() - passiveCeiling_
          << " J above the most the scene held while energy came in (" << passiveCeiling_

@@ -44,7 +44,9 @@ class BlowUp : public std::runtime_error {
 // cannot gain energy, so a total energy (gravity included) above the highest it had while
 // energy came in, by more than the integrator's own energy oscillation, is a blow-up. Past
 // the stability limit a nonlinear scene often saturates instead of overflowing (springs flip,
-// the state turns to noise at a bounded energy): passivity catches that.
+// the state turns to noise at a bounded energy): passivity catches that. Passivity is for
+// methods that rest at the scene's static equilibrium (Integrator::restsAtStaticEquilibrium);
+// the others are watched by the first two detectors.
 //
 // The oscillation allowed: a stable step's true energy swings about a conserved (modified)
 // one. On a mode at a fraction r = dt / limit of its limit symplectic Euler's energy swings
