@@ -170,7 +170,10 @@ class LinearisedRuns {
     sim_.stats = stats;
   }
 
-  ~LinearisedRuns() { sim_.solver.tolerance = solverTolerance_; }
+  ~LinearisedRuns() {
+    sim_.solver.tolerance = solverTolerance_;
+    sim_.reset();
+  }
   LinearisedRuns(const LinearisedRuns&) = delete;
   LinearisedRuns& operator=(const LinearisedRuns&) = delete;
 
@@ -221,8 +224,10 @@ class LinearisedRuns {
       sim_.reset();
       throw;
     }
+    // The simulation is left where the run ended (the next run restores its start, the
+    // destructor resets it): a reset per run re-arms the blow-up check, an energy sum over
+    // every mass, 4 % of the 64 x 64 cloth's prediction.
     sim_.setBlowUpCheck(checked);
-    sim_.reset();
     return out.leftCols(columns);
   }
 
@@ -571,39 +576,82 @@ StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const 
   const double rh = radiusOf(runs, h, o).radius, rh2 = radiusOf(runs, 0.5 * h, o).radius;
   out.evaluations += 2;
   const double growth = std::isfinite(rh) && std::isfinite(rh2) ? std::max(0.0, (4.0 * (rh2 - 1.0) - (rh - 1.0)) / h) : 0.0;
-  auto stable = [&](double dt) {
+  // How far the radius exceeds what is allowed at dt, in log (<= 0: stable). Past the limit
+  // the radius grows about geometrically with dt, so in log dt this is nearly straight near
+  // its root and a secant finds it in a few steps; an infinite radius (a run went
+  // non-finite) is +inf.
+  auto excess = [&](double dt) {
     ++out.evaluations;
-    return radiusOf(runs, dt, o).radius <= 1.0 + o.radiusSlack + 2.0 * growth * dt;
+    const double r = radiusOf(runs, dt, o).radius;
+    return std::log(std::max(r, 1e-300)) - std::log(1.0 + o.radiusSlack + 2.0 * growth * dt);
   };
 
   // Bracket: double while stable, halve while unstable.
-  double lo = 0.0, hi = 0.0;
-  if (stable(firstGuess)) {
+  double lo = 0.0, hi = 0.0, glo = 0.0, ghi = 0.0;
+  const double first = excess(firstGuess);
+  if (first <= 0.0) {
     lo = firstGuess;
+    glo = first;
     while (hi == 0.0) {
       if (lo >= o.largestFactor * firstGuess) {
         out.dt = INFINITY;
         out.steps = runs.steps();
         return out;
       }
-      if (stable(2.0 * lo)) lo *= 2.0; else hi = 2.0 * lo;
+      const double g = excess(2.0 * lo);
+      if (g <= 0.0) {
+        lo *= 2.0;
+        glo = g;
+      } else {
+        hi = 2.0 * lo;
+        ghi = g;
+      }
     }
   } else {
     hi = firstGuess;
+    ghi = first;
     while (lo == 0.0) {
       if (hi <= o.smallestFactor * firstGuess) {
         out.dt = 0.0;
         out.steps = runs.steps();
         return out;
       }
-      if (stable(0.5 * hi)) lo = 0.5 * hi; else hi *= 0.5;
+      const double g = excess(0.5 * hi);
+      if (g <= 0.0) {
+        lo = 0.5 * hi;
+        glo = g;
+      } else {
+        hi *= 0.5;
+        ghi = g;
+      }
     }
   }
 
-  // Bisect geometrically until the bracket is narrow.
+  // Narrow the bracket to the tolerance: a secant step in log dt on the excess (Illinois: an
+  // end kept twice in a row counts half, so the other end moves too), kept a quarter of the
+  // tolerance inside the bracket so that every step shrinks it, and the geometric midpoint
+  // where the secant has nothing to go on (an infinite excess). About 4 radii instead of
+  // bisection's 9 (the 64 x 64 cloth: each radius is 33 runs).
+  int lastKept = 0;  // +1: the last step moved lo, -1: it moved hi
+  const double margin = 0.25 * std::log1p(o.tolerance);
   while (hi / lo > 1.0 + o.tolerance) {
-    const double mid = std::sqrt(lo * hi);
-    if (stable(mid)) lo = mid; else hi = mid;
+    const double a = std::log(lo), b = std::log(hi);
+    double x = 0.5 * (a + b);
+    if (std::isfinite(ghi) && ghi > glo) x = a - glo * (b - a) / (ghi - glo);
+    x = std::clamp(x, a + margin, b - margin);
+    const double mid = std::exp(x);
+    const double g = excess(mid);
+    if (g <= 0.0) {
+      lo = mid;
+      glo = g;
+      if (lastKept == 1) ghi *= 0.5;
+      lastKept = 1;
+    } else {
+      hi = mid;
+      ghi = g;
+      if (lastKept == -1) glo *= 0.5;
+      lastKept = -1;
+    }
   }
   out.dt = lo;
   out.steps = runs.steps();
