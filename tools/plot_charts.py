@@ -291,15 +291,23 @@ def stability(folder):
     finite = [m for m in measured if 0 < m < inf]
     top = max(finite + [p for p in predictions if 0 < p < inf]) * 3 if finite else 1.0
     undamped = [float(r.get("undamped_dt_s", 0) or 0) for r in rows]
+    # The chart's floor: a third below the smallest limit measured or predicted (a prediction
+    # far below every measured one, explicit Euler's on the rope, is written, not drawn).
+    bottom = min(finite + [top]) / 3
     for x, r, m, p, u in zip(xs, rows, measured, predictions, undamped):
         colour, marker = style(r["integrator"], x)
         shown = m if 0 < m < inf else top
         if 0 < m < inf:
             ax.scatter([x], [shown], marker=marker, s=90, color=colour, zorder=4)
-        else:
+        elif m == inf:
             # No limit found: every trial survived, so the limit lies above the largest dt
             # tried. An arrow up off the chart, not a point a reader would take for a limit.
             ax.annotate("", xy=(x, top * 3.5), xytext=(x, top / 2.5), zorder=4,
+                        arrowprops=dict(arrowstyle="-|>", color=colour, lw=2.2, mutation_scale=18))
+        else:
+            # No stable dt found: every trial failed down to the smallest dt the bisection could
+            # afford. An arrow down off the chart.
+            ax.annotate("", xy=(x, bottom * 1.02), xytext=(x, bottom * 2.5), zorder=4,
                         arrowprops=dict(arrowstyle="-|>", color=colour, lw=2.2, mutation_scale=18))
         # The undamped rule c / w_max, dashed, where the method has one: how far damping,
         # contacts and pressure move the limit.
@@ -312,24 +320,32 @@ def stability(folder):
             text = "predicted: no limit;\nnone found (the arrow:\nabove every trial dt)" if m == inf else f"predicted: no limit;\nfails at {m:.3g} s"
             above = shown
         elif p > 0:
-            ax.hlines(p, x - 0.35, x + 0.35, color="black", lw=2)
-            text = f"measured\n{m / p:.3g} x predicted"
+            if p >= bottom:
+                ax.hlines(p, x - 0.35, x + 0.35, color="black", lw=2)
+            if m == 0:
+                text = f"predicted {p:.2g} s;\nmeasured: no stable\ndt (arrow down)"
+            else:
+                text = f"measured\n{m / p:.3g} x predicted"
             above = max(shown, p, u if 0 < u < inf else 0)
         else:
-            text = "predicted: no\nstable dt"
+            text = "predicted: no\nstable dt" + ("; none\nmeasured (arrow down)" if m == 0 else "")
             above = shown
-        # Under the arrow where no limit was found (the arrow fills the room above).
-        below = not 0 < m < inf
-        ax.annotate(text, (x, top / 2.5 if below else above), textcoords="offset points", xytext=(0, -6 if below else 10),
-                    ha="center", va="top" if below else "bottom",
-                    fontsize=7.5, color="0.15" if 0 < p < inf else "0.35")
+        # Under the arrow up where no limit was found (it fills the room above); above the
+        # arrow down where no stable dt was found.
+        if m == inf:
+            where, offset, va = top / 2.5, -6, "top"
+        elif m == 0:
+            where, offset, va = bottom * 2.5, 6, "bottom"
+        else:
+            where, offset, va = above, 10, "bottom"
+        ax.annotate(text, (x, where), textcoords="offset points", xytext=(0, offset),
+                    ha="center", va=va, fontsize=7.5, color="0.15" if 0 < p < inf else "0.35")
     # Legend proxies: the marker of each method is its measured dt, the bar the prediction.
     # Above the axes, so it covers no column.
     ax.scatter([], [], marker="o", color="0.4", s=60, label="measured (bisection on the blow-up check)")
     ax.plot([], [], color="black", lw=2, label="predicted: limit of the linearised step")
     ax.plot([], [], color="0.45", lw=1.2, ls="dashed", label="undamped rule c / w_max")
-    lo = min(finite + [top]) / 3
-    ax.set_ylim(lo, top * 4)  # room above the highest marker for its note
+    ax.set_ylim(bottom, top * 4)  # room above the highest marker for its note
     ax.set_xlim(-0.6, len(rows) - 0.4)
     ax.set_xticks(list(xs))
     # Names level, every second one a line lower, so long neighbours never meet.
