@@ -57,6 +57,10 @@ double BlowUpCheck::passivityAllowance() const {
   return std::max(kSwingMargin * energySwing_, kSwingFloor * energyScale_);
 }
 
+bool BlowUpCheck::changedSinceLastCheck(const Simulation& sim) const {
+  return sim.state.pos != last_.pos || sim.state.vel != last_.vel;
+}
+
 void BlowUpCheck::admitUserEnergy(const Simulation& sim) {
   const double before = energyScale_;
   const double ceiling = passiveCeiling_;

@@ -72,6 +72,9 @@ class BlowUpCheck {
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
   // The user put energy in (dragged, pinned): never count that as a blow-up.
   void admitUserEnergy(const Simulation& sim);
+  // Whether the state differs from the one the last check passed (or arm() saw): set by hand
+  // between steps.
+  bool changedSinceLastCheck(const Simulation& sim) const;
   // Throws BlowUp naming the detector that fired and the likely cause. A non-finite state:
   // the forces are evaluated again at the last finite state the check saw; when one is
   // non-finite there, the message names the first such mass and the term that makes it
