@@ -290,40 +290,62 @@ def stability(folder):
     predictions = [float(r["predicted_dt_s"]) for r in rows]
     finite = [m for m in measured if 0 < m < inf]
     top = max(finite + [p for p in predictions if 0 < p < inf]) * 3 if finite else 1.0
-    for x, r, m, p in zip(xs, rows, measured, predictions):
+    undamped = [float(r.get("undamped_dt_s", 0) or 0) for r in rows]
+    # The chart's floor: a third below the smallest limit measured or predicted (a prediction
+    # far below every measured one, explicit Euler's on the rope, is written, not drawn).
+    bottom = min(finite + [top]) / 3
+    for x, r, m, p, u in zip(xs, rows, measured, predictions, undamped):
         colour, marker = style(r["integrator"], x)
         shown = m if 0 < m < inf else top
         if 0 < m < inf:
             ax.scatter([x], [shown], marker=marker, s=90, color=colour, zorder=4)
-        else:
+        elif m == inf:
             # No limit found: every trial survived, so the limit lies above the largest dt
             # tried. An arrow up off the chart, not a point a reader would take for a limit.
             ax.annotate("", xy=(x, top * 3.5), xytext=(x, top / 2.5), zorder=4,
                         arrowprops=dict(arrowstyle="-|>", color=colour, lw=2.2, mutation_scale=18))
+        else:
+            # No stable dt found: every trial failed down to the smallest dt the bisection could
+            # afford. An arrow down off the chart.
+            ax.annotate("", xy=(x, bottom * 1.02), xytext=(x, bottom * 2.5), zorder=4,
+                        arrowprops=dict(arrowstyle="-|>", color=colour, lw=2.2, mutation_scale=18))
+        # The undamped rule c / w_max, dashed, where the method has one: how far damping,
+        # contacts and pressure move the limit.
+        if 0 < u < inf:
+            ax.hlines(u, x - 0.35, x + 0.35, color="0.45", lw=1.2, linestyles="dashed")
         # Each column's note is centred on it, above both its marker and its bar, in a few
         # short lines: it stays within the column and never covers a marker or a bar.
         if p == inf:
-            # Unconditionally stable in theory (implicit Euler): say what the bisection found.
-            text = "c = inf: no limit\nfound (the arrow:\nabove every trial dt)" if m == inf else f"c = inf in theory;\nfails at {m:.3g} s"
+            # Stable at every dt the prediction tried: say what the bisection found.
+            text = "predicted: no limit;\nnone found (the arrow:\nabove every trial dt)" if m == inf else f"predicted: no limit;\nfails at {m:.3g} s"
             above = shown
         elif p > 0:
-            ax.hlines(p, x - 0.35, x + 0.35, color="black", lw=2)
-            text = f"measured\n{m / p:.3g} x predicted"
-            above = max(shown, p)
+            if p >= bottom:
+                ax.hlines(p, x - 0.35, x + 0.35, color="black", lw=2)
+            if m == 0:
+                text = f"predicted {p:.2g} s;\nmeasured: no stable\ndt (arrow down)"
+            else:
+                text = f"measured\n{m / p:.3g} x predicted"
+            above = max(shown, p, u if 0 < u < inf else 0)
         else:
-            text = "c = 0: no undamped\nlimit; survives the\ntrial time only"
+            text = "predicted: no\nstable dt" + ("; none\nmeasured (arrow down)" if m == 0 else "")
             above = shown
-        # Under the arrow where no limit was found (the arrow fills the room above).
-        below = not 0 < m < inf
-        ax.annotate(text, (x, top / 2.5 if below else above), textcoords="offset points", xytext=(0, -6 if below else 10),
-                    ha="center", va="top" if below else "bottom",
-                    fontsize=7.5, color="0.15" if 0 < p < inf else "0.35")
+        # Under the arrow up where no limit was found (it fills the room above); above the
+        # arrow down where no stable dt was found.
+        if m == inf:
+            where, offset, va = top / 2.5, -6, "top"
+        elif m == 0:
+            where, offset, va = bottom * 2.5, 6, "bottom"
+        else:
+            where, offset, va = above, 10, "bottom"
+        ax.annotate(text, (x, where), textcoords="offset points", xytext=(0, offset),
+                    ha="center", va=va, fontsize=7.5, color="0.15" if 0 < p < inf else "0.35")
     # Legend proxies: the marker of each method is its measured dt, the bar the prediction.
     # Above the axes, so it covers no column.
     ax.scatter([], [], marker="o", color="0.4", s=60, label="measured (bisection on the blow-up check)")
-    ax.plot([], [], color="black", lw=2, label="predicted c / w_max")
-    lo = min(finite + [top]) / 3
-    ax.set_ylim(lo, top * 4)  # room above the highest marker for its note
+    ax.plot([], [], color="black", lw=2, label="predicted: limit of the linearised step")
+    ax.plot([], [], color="0.45", lw=1.2, ls="dashed", label="undamped rule c / w_max")
+    ax.set_ylim(bottom, top * 4)  # room above the highest marker for its note
     ax.set_xlim(-0.6, len(rows) - 0.4)
     ax.set_xticks(list(xs))
     # Names level, every second one a line lower, so long neighbours never meet.
@@ -333,9 +355,9 @@ def stability(folder):
     ax.set_yscale("log")
     ax.set_ylabel("largest stable dt (s)")
     ax.grid(True, axis="y", which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, frameon=False)
+    ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
     ax.set_title(f"Stability: {title_of(facts)}\nw_max = {facts['w_max_rad_s']:.4g} rad/s (Lanczos; Gershgorin bound "
-                 f"{facts['gershgorin_rad_s']:.4g}); each trial {facts['duration_s']:.3g} s under the blow-up check",
+                 f"{facts['gershgorin_rad_s']:.4g}); each trial at least {facts['duration_s']:.3g} s under the blow-up check",
                  fontsize=10, pad=24)
     save(fig, folder, "stability")
 
@@ -344,6 +366,7 @@ def stability(folder):
         return
     cells = read_csv(map_path)
     boundary = read_csv(folder / "stability_boundary.csv")
+    inf = float("inf")
     use_k = facts.get("map_spring_constant_N_m", 0) > 0
     xkey = "spring_constant_N_m" if use_k else "stiffness_scale"
     fig, ax = plt.subplots(figsize=(8, 6))
@@ -354,10 +377,14 @@ def stability(folder):
         if sel:
             ax.scatter([float(c[xkey]) for c in sel], [float(c["dt_s"]) for c in sel], marker="s", s=70,
                        color=colour, label=label, edgecolors="none")
-    pred = [(float(b[xkey]), float(b["predicted_dt_s"])) for b in boundary if float(b["predicted_dt_s"]) > 0]
+    pred = [(float(b[xkey]), float(b["predicted_dt_s"])) for b in boundary if 0 < float(b["predicted_dt_s"]) < inf]
     if pred:
         ax.plot([p[0] for p in pred], [p[1] for p in pred], color="black", lw=2,
-                label=f"predicted c / w_max (c = {facts['map_stability_constant']:.3g})")
+                label="predicted: limit of the linearised step")
+    undamped = [(float(b[xkey]), float(b["undamped_dt_s"])) for b in boundary if 0 < float(b["undamped_dt_s"]) < inf]
+    if undamped:
+        ax.plot([p[0] for p in undamped], [p[1] for p in undamped], color="0.45", lw=1.2, ls="dashed",
+                label=f"undamped rule c / w_max (c = {facts['map_stability_constant']:.3g})")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("spring constant k (N/m)" if use_k else "stiffness scale (x every spring's k)")

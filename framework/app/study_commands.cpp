@@ -82,14 +82,17 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
 
   // The table a student reads: measured against predicted.
   std::cout << "w_max = " << study.maxAngularFrequency << " rad/s (Lanczos), Gershgorin bound "
-            << study.gershgorinBound << " rad/s; each trial runs " << study.duration << " s\n";
-  std::cout << std::left << std::setw(22) << "integrator" << std::setw(8) << "c" << std::setw(16) << "predicted dt"
-            << std::setw(16) << "measured dt" << "measured/predicted\n";
+            << study.gershgorinBound << " rad/s; each trial runs at least " << study.duration
+            << " s (longer where an instability just past the predicted limit grows slowly)\n";
+  std::cout << std::left << std::setw(22) << "integrator" << std::setw(16) << "c / w_max" << std::setw(16)
+            << "predicted dt" << std::setw(16) << "measured dt" << "measured/predicted\n";
   for (const studies::CriticalDt& m : study.methods) {
-    // "none": no limit without damping (c = 0); "unlimited": unconditionally stable (c = inf).
+    // predicted: the exact limit of the step (stepStableDt); "none": no stable dt;
+    // "unlimited": stable at every dt tried. c / w_max: the undamped rule, for comparison.
     const bool finite = std::isfinite(m.predicted) && m.predicted > 0.0;
     const std::string predicted = finite ? std::to_string(m.predicted) : m.predicted > 0.0 ? "unlimited" : "none";
-    std::cout << std::setw(22) << m.integrator << std::setw(8) << m.stabilityConstant << std::setw(16) << predicted
+    const std::string undamped = m.undamped > 0.0 && std::isfinite(m.undamped) ? std::to_string(m.undamped) : "-";
+    std::cout << std::setw(22) << m.integrator << std::setw(16) << undamped << std::setw(16) << predicted
               << std::setw(16) << m.measured << (finite ? std::to_string(m.measured / m.predicted) : "-") << "\n";
   }
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "springlab/frequency_estimate.hpp"
 #include "springlab/simulation.hpp"
+#include "springlab/step_stability.hpp"
 
 namespace springlab {
 
@@ -29,23 +29,6 @@ double predictedStableDt(const Integrator& integrator, double maxAngularFrequenc
   return integrator.stabilityConstant() / maxAngularFrequency;
 }
 
-double explicitEulerDampedStableDt(double beta, double maxAngularFrequency) {
-  if (!(beta > 0.0)) return 0.0;
-  if (!(maxAngularFrequency > 0.0)) return INFINITY;
-  // Every underdamped mode allows dt < 2 zeta / w = beta; an overdamped stiffest mode less.
-  const double zeta = 0.5 * beta * maxAngularFrequency;
-  if (zeta <= 1.0) return beta;
-  return 2.0 / (maxAngularFrequency * (zeta + std::sqrt(zeta * zeta - 1.0)));
-}
-
-double springDampingRatio(const Simulation& sim) {
-  double beta = INFINITY;
-  for (const Spring& s : sim.springs()) {
-    if (s.springConstant > 0.0) beta = std::min(beta, s.frictionConstant / s.springConstant);
-  }
-  return std::isfinite(beta) ? beta : 0.0;
-}
-
 void BlowUpCheck::arm(const Simulation& sim) {
   // Energy the scene holds now plus what gravity can add over the scene's extent, plus
   // 1 J per kg so that a scene at rest without gravity still has a finite scale.
@@ -64,14 +47,26 @@ void BlowUpCheck::arm(const Simulation& sim) {
   for (const Mass& m : sim.masses) totalMass += m.m;
   energyScale_ = std::abs(e.kinetic) + std::abs(e.elastic) + std::abs(e.other) +
                  totalMass * (sim.gravitation.norm() * extent + 1.0);
+  passiveCeiling_ = e.total();
   last_ = sim.state;
   lastStep_ = sim.stats.steps;
 }
 
+double BlowUpCheck::passivityAllowance() const {
+  if (energySwing_ < 0.0) return kPassivityFraction * energyScale_;
+  return std::max(kSwingMargin * energySwing_, kSwingFloor * energyScale_);
+}
+
+bool BlowUpCheck::changedSinceLastCheck(const Simulation& sim) const {
+  return sim.state.pos != last_.pos || sim.state.vel != last_.vel;
+}
+
 void BlowUpCheck::admitUserEnergy(const Simulation& sim) {
   const double before = energyScale_;
+  const double ceiling = passiveCeiling_;
   arm(sim);
   energyScale_ = std::max(before, energyScale_);
+  passiveCeiling_ = std::max(ceiling, passiveCeiling_);
 }
 
 namespace {
@@ -181,18 +176,60 @@ std::string BlowUpCheck::blameForces(Simulation& sim) {
   return os.str();
 }
 
+namespace {
+
+// Did a mass the scene moves (pinned, grabbed) move since the last check? Then the scene did
+// work on the rest: the rope's fixed end carried by the user's keys.
+bool anchorsMoved(const Simulation& sim, const State& last) {
+  if (last.pos.size() != sim.state.pos.size()) return false;
+  for (int i = 0; i < sim.numOfMasses(); ++i) {
+    if (sim.inverseMass(i) != 0.0) continue;
+    if (sim.state.pos[i] != last.pos[i] || sim.state.vel[i] != Vec3::Zero()) return true;
+  }
+  return false;
+}
+
+// The exact stability limit of the step that runs, leaving the state and counters as the
+// blow-up left them; NaN when it cannot be computed.
+double exactLimit(Simulation& sim) {
+  const State blownUp = sim.state;
+  const Stats stats = sim.stats;
+  double limit = NAN;
+  try {
+    limit = stepStableDt(sim);
+  } catch (const std::exception&) {
+    limit = NAN;
+  }
+  sim.state = blownUp;
+  sim.stats = stats;
+  sim.integrator().reset();
+  return limit;
+}
+
+}  // namespace
+
+bool BlowUpCheck::beyondLimitOrMeasured(Simulation& sim, double dt) {
+  if (energySwing_ >= 0.0) return true;
+  if (dt != limitDt_) {
+    limitDt_ = dt;
+    const double limit = exactLimit(sim);
+    beyondLimit_ = !(dt <= limit);  // NaN (not computable) counts as beyond
+  }
+  return beyondLimit_;
+}
+
 void BlowUpCheck::check(Simulation& sim, double dt) {
-  // Non-finite state: name the first mass that went bad.
+  // Detector 1, a non-finite state: name the first mass that went bad.
   std::string why;
   for (int i = 0; i < sim.numOfMasses() && why.empty(); ++i) {
     if (!sim.state.pos[i].allFinite() || !sim.state.vel[i].allFinite()) {
       why = "mass " + std::to_string(i) + " has a non-finite position or velocity";
     }
   }
-  bool runaway = false;
-  // Runaway energy: kinetic plus potential energy (springs and the lab's own: ground, gas)
-  // far beyond anything the scene can hold. The lab's potentials count because a source
-  // such as a gas pays for the elastic energy it stores with its own (-nRT ln V falls).
+  bool finiteState = why.empty();
+  // Detector 2, runaway energy: kinetic plus potential energy (springs and the lab's own:
+  // ground, gas) far beyond anything the scene can hold. The lab's potentials count because a
+  // source such as a gas pays for the elastic energy it stores with its own (-nRT ln V falls).
   if (why.empty()) {
     const Energies e = sim.energies();
     const double grown = e.kinetic + e.elastic + e.other;
@@ -203,12 +240,32 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       os << "kinetic + elastic + other potential energy is " << grown << " J (kinetic " << e.kinetic << ", elastic "
          << e.elastic << ", other " << e.other << ")";
       why = os.str();
+      finiteState = false;
     } else if (!(grown <= kRunawayFactor * energyScale_)) {
       std::ostringstream os;
-      os << "kinetic + elastic + other potential energy reached " << grown << " J, over " << kRunawayFactor
-         << " times the scene's energy scale of " << energyScale_ << " J";
+      os << "runaway energy: kinetic + elastic + other potential energy reached " << grown << " J, over "
+         << kRunawayFactor << " times the scene's energy scale of " << energyScale_ << " J";
       why = os.str();
-      runaway = true;
+    } else if (sim.suppliesEnergy() || anchorsMoved(sim, last_)) {
+      // Energy comes in (wind, pump, a moving anchor): the ceiling follows it up.
+      passiveCeiling_ = std::max(passiveCeiling_, e.total());
+    } else if (sim.integrator().restsAtStaticEquilibrium() && e.total() > passiveCeiling_ + passivityAllowance() &&
+               beyondLimitOrMeasured(sim, dt)) {
+      // Detector 3, passivity: nothing puts energy in, yet the total energy rose above the
+      // ceiling by more than the integrator's own oscillation. Not for a method that rests
+      // away from the springs' equilibrium (XPBD from zero multipliers, projective dynamics):
+      // the scene's spring energy is not its own, and it rests calmly holding more of it
+      // (the 8 x 8 fabric under XPBD at 50 ms: +0.008 J above its flat start, at rest).
+      std::ostringstream os;
+      os << "passivity: the total energy rose to " << e.total() << " J, " << e.total() - passiveCeiling_
+         << " J above the most the scene held while energy came in (" << passiveCeiling_
+         << " J), in a scene that puts no energy in (no wind, pump, moving anchor or drag); the integrator's own "
+            "energy oscillation is allowed "
+         << passivityAllowance() << " J ("
+         << (energySwing_ >= 0.0 ? "64 times its swing at half the stability limit"
+                                 : "half the energy scale, no swing was measured, and dt is past the step's limit")
+         << ")";
+      why = os.str();
     }
   }
   if (why.empty()) {
@@ -222,7 +279,7 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   std::ostringstream msg;
   msg << "simulation blew up at t = " << sim.state.time << " s (step " << sim.stats.steps << "): " << why << ". ";
   const Integrator& integrator = sim.integrator();
-  if (!runaway) {
+  if (!finiteState) {
     // A non-finite state: did the forces go first? Then dt is not to blame.
     const std::string forces = blameForces(sim);
     if (!forces.empty()) {
@@ -245,40 +302,25 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     }
   }
 
-  // Name the likely cause: dt against the integrator's stability limit, with w_max from the
-  // linearised scene at its initial state (Lanczos); Gershgorin's bound when that finds nothing.
-  double wMax = 0.0;
-  try {
-    wMax = lanczosEstimate(sim, sim.initialState()).maxAngularFrequency;
-  } catch (const std::exception&) {
-    wMax = 0.0;
-  }
-  if (!(wMax > 0.0) || !std::isfinite(wMax)) wMax = sim.angularFrequencyBound();
-  const double beta = springDampingRatio(sim);
-  if (integrator.stabilityConstant() <= 0.0 && integrator.name() == "explicit_euler" && beta > 0.0) {
-    // Explicit Euler is stable only through damping: its damped limit, not the undamped rule.
-    const double safeDt = explicitEulerDampedStableDt(beta, wMax);
-    msg << "Likely cause: dt = " << dt << " s is too large for explicit_euler, which is stable only through "
-        << "damping: with the springs' kd/k = " << beta << " s and w_max ~ " << wMax
-        << " rad/s, dt must stay below about ";
-    if (0.5 * beta * wMax <= 1.0) {
-      msg << "kd/k = " << safeDt << " s.";
-    } else {
-      msg << "2 / (w_max (zeta + sqrt(zeta^2 - 1))) = " << safeDt << " s (the stiffest mode is overdamped, zeta = "
-          << 0.5 * beta * wMax << ").";
-    }
-    if (dt <= safeDt) msg << " dt is below that limit: look for a force that grows without bound.";
-  } else if (integrator.stabilityConstant() <= 0.0) {
-    msg << "Likely cause: " << integrator.name()
-        << " gains energy at every dt on undamped springs (w_max = " << wMax
-        << " rad/s); use symplectic_euler or a Verlet method, or damp the springs (explicit Euler is then stable "
-           "below dt = kd/k).";
+  // Name the likely cause: dt against the exact limit of the step that runs.
+  const std::string name = integrator.name();
+  const double limit = exactLimit(sim);
+  if (std::isnan(limit)) {
+    msg << "The stability limit of " << name << " on this scene could not be computed; try a smaller dt.";
+  } else if (std::isinf(limit)) {
+    msg << "Likely cause: not dt: " << name << " is stable at every dt on this scene linearised where it settles. Look "
+        << "for a force that grows without bound, a contact or a constraint that adds energy.";
+  } else if (limit == 0.0) {
+    msg << "Likely cause: " << name << " has no stable dt on this scene (the linearised step grows at every dt: "
+        << "an undamped mode); damp the springs or use symplectic_euler, a Verlet method or an implicit one.";
+  } else if (dt > limit) {
+    msg << "Likely cause: dt = " << dt << " s is too large: the linearised step of " << name
+        << " on this scene (dampers, air, contacts and pressure included) is stable only below dt = " << limit
+        << " s.";
   } else {
-    const double safeDt = predictedStableDt(integrator, wMax);
-    msg << "Likely cause: dt = " << dt << " s is too large for " << integrator.name()
-        << ": the stiffest mode has w_max ~ " << wMax << " rad/s, so dt must stay below about "
-        << integrator.stabilityConstant() << " / w_max = " << safeDt << " s.";
-    if (dt <= safeDt) msg << " dt is below that limit: look for a force that grows without bound.";
+    msg << "dt = " << dt << " s is below the stability limit of " << name << " on this scene linearised where it settles ("
+        << limit << " s), so the step is not the likely cause: the scene left the state it was linearised at, where it settles (a "
+        << "contact, a stiffer configuration, a force that grows without bound).";
   }
   throw BlowUp(msg.str());
 }

@@ -25,6 +25,9 @@ void Simulation::simulate(double dt) {
   // integrator does besides evaluating forces is its "integration" phase; the lab's
   // afterStep charges its corrections to their own phases.
   const PhaseProfile::Scope step(profile, Phase::kOther);
+  // A state set by hand since the last step (a test giving the masses velocities, a script
+  // moving them) is energy the user put in, not the step's: the check starts from it.
+  if (blowUpCheckEnabled_ && blowUpCheck_.changedSinceLastCheck(*this)) blowUpCheck_.admitUserEnergy(*this);
   {
     const PhaseProfile::Scope integration(profile, Phase::kIntegration);
     integrator_->step(*this, dt);
@@ -85,6 +88,17 @@ void Simulation::markInitialState() {
   building_ = false;
   onModelEdited();
   blowUpCheck_.arm(*this);
+}
+
+std::unique_ptr<Integrator> Simulation::exchangeIntegrator(std::unique_ptr<Integrator> integrator) {
+  std::unique_ptr<Integrator> before = std::move(integrator_);
+  try {
+    setIntegrator(std::move(integrator));
+  } catch (...) {
+    integrator_ = std::move(before);
+    throw;
+  }
+  return before;
 }
 
 void Simulation::reset() {

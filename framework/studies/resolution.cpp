@@ -206,9 +206,10 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
 
   // 3. Each integrator: the largest dt on the ladder that is stable and within half the
   //    tolerance (integrators in parallel, each walking down its ladder). A method stable at
-  //    any dt (c = inf: implicit Euler, XPBD, projective dynamics) starts higher, at the
-  //    scene's frame length (the largest step the viewer can take), since RK4's limit says
-  //    nothing about it: on a stiff scene its own step can be many times that limit.
+  //    any dt (implicit Euler, XPBD, projective dynamics) starts higher, at the scene's frame
+  //    length (the largest step the viewer can take), since RK4's limit says nothing about
+  //    it: on a stiff scene its own step can be many times that limit. The others start at
+  //    the first rung within their own exact limit (stepStableDt).
   const double frame = sceneDt(scene) * scene.json.at("substeps").get<double>();
   int frameLevel = 0;
   while (frameLevel < first && interval / std::ldexp(1.0, frameLevel) > frame * (1.0 + 1e-9)) ++frameLevel;
@@ -217,19 +218,37 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
   // Every rung of every ladder is planned; the rungs below a ladder's answer are dropped.
   const double modelMasses = registry.loadScene(model).sim->numOfMasses();
   auto rungWork = [&](int level) { return modelMasses * static_cast<double>(per(level)) * o.samples; };
-  auto startLevel = [&](const std::string& name) {
-    return std::isinf(stabilityConstant(registry, name)) ? frameLevel : first;
-  };
-  for (const std::string& name : names) {
-    for (int l = startLevel(name); l < first + o.levels; ++l) progress.plan(1, rungWork(l));
+  // Each ladder starts at the first rung at or below the method's own stability limit
+  // (sceneStepStableDt); a method stable at every dt at the frame length.
+  std::vector<int> startLevel(names.size(), first);
+  std::vector<std::string> limitNote(names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    double limit = 0.0;
+    try {
+      limit = sceneStepStableDt(registry, model, names[i]);
+    } catch (const NotImplemented& e) {
+      limitNote[i] = e.what();
+      continue;
+    }
+    int start = std::isinf(limit) ? frameLevel : 0;
+    while (std::isfinite(limit) && start < first + o.levels - 1 && interval / std::ldexp(1.0, start) > limit * (1.0 + 1e-9)) ++start;
+    startLevel[i] = start;
+  }
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    for (int l = startLevel[i]; l < first + o.levels; ++l) progress.plan(1, rungWork(l));
   }
   parallelFor(static_cast<int>(names.size()), o.threads, [&](int i) {
     Candidate& c = advice.candidates[i];
     c.integrator = names[i];
-    const int start = startLevel(names[i]);
+    const int start = startLevel[i];
     auto dropFrom = [&](int level) {
       for (int l = level; l < first + o.levels; ++l) progress.dropped(1, rungWork(l));
     };
+    if (!limitNote[i].empty()) {
+      c.note = limitNote[i];
+      dropFrom(start);
+      return;
+    }
     for (int l = start; l < first + o.levels; ++l) {
       RunSpec spec{model, names[i], interval / static_cast<double>(per(l)), per(l), o.samples};
       spec.keepPositions = false;

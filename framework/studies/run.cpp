@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "springlab/frequency_estimate.hpp"
+#include "springlab/step_stability.hpp"
 
 namespace springlab::studies {
 
@@ -29,12 +30,39 @@ void sample(const Simulation& sim, bool keepPositions, RunResult& out) {
 
 }  // namespace
 
+namespace {
+
+// The integrator's energy swing: the largest rise of the total energy above its start in a
+// run of the scene at dt (half the stability limit), over the run's simulated time but at
+// most 4000 steps; -1 when that run goes non-finite (nothing measured).
+double energySwing(const Registry& registry, const RunSpec& spec, double dt) {
+  LoadedScene loaded = registry.loadScene(spec.scene);
+  Simulation& sim = *loaded.sim;
+  sim.setIntegrator(registry.makeIntegrator(spec.integrator));
+  scaleSprings(sim, spec.stiffnessScale);
+  sim.setBlowUpCheck(false);
+  const double duration = spec.dt * static_cast<double>(spec.stepsPerSample) * spec.samples;
+  const long steps = std::clamp(std::lround(duration / dt), 1L, 4000L);
+  const double start = sim.energies().total();
+  double swing = 0.0;
+  for (long k = 0; k < steps; ++k) {
+    sim.operate(dt);
+    const double e = sim.energies().total();
+    if (!std::isfinite(e)) return -1.0;
+    swing = std::max(swing, e - start);
+  }
+  return swing;
+}
+
+}  // namespace
+
 RunResult runScene(const Registry& registry, const RunSpec& spec) {
   LoadedScene loaded = registry.loadScene(spec.scene);
   Simulation& sim = *loaded.sim;
   sim.setIntegrator(registry.makeIntegrator(spec.integrator));
   scaleSprings(sim, spec.stiffnessScale);
   sim.setBlowUpCheck(true);
+  if (spec.swingDt > 0.0) sim.setEnergySwing(energySwing(registry, spec, spec.swingDt));
 
   RunResult out;
   out.masses = sim.numOfMasses();
@@ -117,6 +145,14 @@ double sceneLanczosEstimate(const Registry& registry, const SceneDocument& scene
   LoadedScene loaded = registry.loadScene(scene);
   scaleSprings(*loaded.sim, stiffnessScale);
   return lanczosEstimate(*loaded.sim, loaded.sim->state).maxAngularFrequency;
+}
+
+double sceneStepStableDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                         double stiffnessScale) {
+  LoadedScene loaded = registry.loadScene(scene);
+  loaded.sim->setIntegrator(registry.makeIntegrator(integrator));
+  scaleSprings(*loaded.sim, stiffnessScale);
+  return stepStableDt(*loaded.sim);
 }
 
 double stabilityConstant(const Registry& registry, const std::string& integrator) {

@@ -142,36 +142,5 @@ TEST(BlowUpCheck, ANonFiniteSpringForceNamesTheSpring) {
   EXPECT_EQ(sim.gravitation, Vec3(0, -9.81, 0));
 }
 
-TEST(BlowUpCheck, DampedExplicitEulerLimitIsKdOverK) {
-  // Underdamped stiffest mode: every mode allows dt < kd/k.
-  EXPECT_DOUBLE_EQ(explicitEulerDampedStableDt(0.002, 100.0), 0.002);
-  // Overdamped (zeta = 2): dt < 2 / (w (zeta + sqrt(zeta^2 - 1))).
-  EXPECT_NEAR(explicitEulerDampedStableDt(0.04, 100.0), 2.0 / (100.0 * (2.0 + std::sqrt(3.0))), 1e-15);
-  EXPECT_EQ(explicitEulerDampedStableDt(0.0, 100.0), 0.0);
-}
-
-// Not explicit Euler's update: an integrator under that name that makes energy run away, so
-// the message for explicit_euler on damped springs can be read.
-class RunawayNamedExplicitEuler final : public Integrator {
- public:
-  std::string name() const override { return "explicit_euler"; }
-  int order() const override { return 1; }
-  double stabilityConstant() const override { return 0.0; }
-  void step(Simulation& sim, double dt) override {
-    for (Vec3& v : sim.state.vel) v = Vec3(1e6, 0, 0);
-    sim.state.time += dt;
-  }
-};
-
-TEST(BlowUpCheck, DampedExplicitEulerGetsItsDampedLimit) {
-  AnchoredOscillators sim(2, 1.0, 1.0);
-  sim.editModel([](Simulation& model) { model.editSprings().push_back(Spring{0, 1, 400.0, 1.0, 0.8}); });  // kd/k = 2 ms
-  sim.setIntegrator(std::make_unique<RunawayNamedExplicitEuler>());
-  const std::string what = blowUpMessage(sim, 0.005);
-  EXPECT_NE(what.find("stable only through damping"), std::string::npos) << what;
-  EXPECT_NE(what.find("kd/k = 0.002 s"), std::string::npos) << what;
-  EXPECT_EQ(what.find("every dt"), std::string::npos) << what;
-}
-
 }  // namespace
 }  // namespace springlab

@@ -39,6 +39,8 @@ SKIP = [
 EXPECTED_EXIT = [
     (r"^\./springlab sim scenes/net_thesis\.json .*--integrator explicit_euler", 4,
      "section 5: explicit Euler blows up on the thesis' cloth at dt = 1/60 s (exit 4, blow-up)"),
+    (r"^\./springlab sim scenes/softbody_ball\.json --integrator explicit_euler --dt 0\.001 --steps 3000", 4,
+     "question 6 of handout 03: explicit Euler blows up in the ball's second landing (exit 4, blow-up)"),
     (r"^\./springlab run rope --integrator explicit_euler --dt 0\.0005", 4,
      "section 5: explicit Euler blows up on the rope at dt = 0.5 ms; the headless run says so (exit 4)"),
 ]

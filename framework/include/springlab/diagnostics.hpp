@@ -27,18 +27,9 @@ struct Energies {
 double springGershgorinBound(const Simulation& sim);
 
 // The largest dt the integrator keeps stable for undamped springs, c / w_max (s);
-// 0 when the method has no stable dt (explicit Euler).
+// 0 when the method has no stable dt (explicit Euler). Damping, contacts and pressure move
+// the limit: stepStableDt (springlab/step_stability.hpp) gives the limit of the step that runs.
 double predictedStableDt(const Integrator& integrator, double maxAngularFrequency);
-
-// The largest dt explicit Euler keeps stable on springs damped along their length with
-// kd = beta k (beta = kd/k, s): a mode of angular frequency w has damping ratio
-// zeta = beta w / 2 and explicit Euler needs |1 + dt lambda| <= 1, so dt < 2 zeta / w = beta
-// while the mode is underdamped (zeta <= 1), and dt < 2 / (w (zeta + sqrt(zeta^2 - 1))) for an
-// overdamped one. 0 without damping (explicit Euler then has no stable dt).
-double explicitEulerDampedStableDt(double beta, double maxAngularFrequency);
-
-// The springs' smallest damping ratio kd/k (s) over springs with k > 0; 0 when one is undamped.
-double springDampingRatio(const Simulation& sim);
 
 // Raised when a run blew up; what() says when, why it is likely, and the safe dt.
 class BlowUp : public std::runtime_error {
@@ -46,28 +37,62 @@ class BlowUp : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Watches a run: non-finite state, or kinetic plus elastic plus other potential energy
-// (otherPotentialEnergy: ground, gas) grown far beyond the
-// energy the scene could ever hold (its initial energy plus the work gravity can do).
+// Watches a run, with three detectors: a non-finite state; kinetic plus elastic plus other
+// potential energy (otherPotentialEnergy: ground, gas) grown far beyond the energy the scene
+// could ever hold (its initial energy plus the work gravity can do: the runaway factor); and
+// passivity: a scene that puts no energy in (no wind, pump, moving pinned mass or user drag)
+// cannot gain energy, so a total energy (gravity included) above the highest it had while
+// energy came in, by more than the integrator's own energy oscillation, is a blow-up. Past
+// the stability limit a nonlinear scene often saturates instead of overflowing (springs flip,
+// the state turns to noise at a bounded energy): passivity catches that. Passivity is for
+// methods that rest at the scene's static equilibrium (Integrator::restsAtStaticEquilibrium);
+// the others are watched by the first two detectors.
+//
+// The oscillation allowed: a stable step's true energy swings about a conserved (modified)
+// one. On a mode at a fraction r = dt / limit of its limit symplectic Euler's energy swings
+// by a factor up to (1 + r) / (1 - r) of the mode's energy (a Verlet method's 1 / (1 - r^2),
+// the damped methods' less): 2 / (1 - r) - 1 = 3 at r = 1/2, 65 at r = 0.97. So the swing
+// measured in a short run at half the limit (setEnergySwing), times kSwingMargin = 64
+// (twice the ratio 65 / 3 between the two dts, rounded up), bounds the swing of any stable
+// run up to 0.97 of the limit; the energy a saturated instability gains, a good part of the
+// scene's own, is far above it. Without a measured swing (the viewer) the allowance is
+// kPassivityFraction of the energy scale, and only a run past the step's limit is stopped.
 class BlowUpCheck {
  public:
-  // Energy growth factor over the scene's energy scale that counts as a blow-up.
+  // Energy growth factor over the scene's energy scale that counts as a runaway.
   static constexpr double kRunawayFactor = 100.0;
+  // Rise of a passive scene's total energy, in energy scales, that counts as a blow-up when
+  // no swing was measured.
+  static constexpr double kPassivityFraction = 0.5;
+  // The measured swing is allowed this many times over (see above), and never less than
+  // kSwingFloor of the energy scale (round-off of a scene whose energy does not move).
+  static constexpr double kSwingMargin = 64.0;
+  static constexpr double kSwingFloor = 1e-4;
 
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
   // The user put energy in (dragged, pinned): never count that as a blow-up.
   void admitUserEnergy(const Simulation& sim);
-  // Throws BlowUp naming the likely cause. A non-finite state: the forces are evaluated again
-  // at the last finite state the check saw; when one is non-finite there, the message names
-  // the first such mass and the term that makes it non-finite (the lab's forceTermNames(),
-  // each left out in turn; else springs, gravity, or the lab's own forces), and does not
-  // blame dt. Otherwise (and for runaway energy) it predicts the safe
-  // dt from lanczosEstimate at the scene's initial state (the blown-up state says nothing
-  // about the scene's stiffness); a damped explicit Euler gets its damped limit.
-  // Remembers the state as the last finite one when it passes.
+  // Whether the state differs from the one the last check passed (or arm() saw): set by hand
+  // between steps.
+  bool changedSinceLastCheck(const Simulation& sim) const;
+  // Throws BlowUp naming the detector that fired and the likely cause. A non-finite state:
+  // the forces are evaluated again at the last finite state the check saw; when one is
+  // non-finite there, the message names the first such mass and the term that makes it
+  // non-finite (the lab's forceTermNames(), each left out in turn; else springs, gravity, or
+  // the lab's own forces), and does not blame dt. Otherwise it gives the exact stability
+  // limit of the step that runs (stepStableDt, at the scene's initial state: the blown-up
+  // state says nothing about the scene's stiffness) and compares dt with it. Computing the
+  // limit resets the lab's own data (a dragged collider returns); the state and the counters
+  // are put back as the blow-up left them. Remembers the state as the last finite one when
+  // it passes.
   void check(Simulation& sim, double dt);
 
   double energyScale() const { return energyScale_; }
+  // The integrator's own energy swing on this scene (J: the largest rise of the total energy
+  // above its start in a short run at half the stability limit); negative: not measured.
+  void setEnergySwing(double joules) { energySwing_ = joules; }
+  // The rise of a passive scene's total energy above its ceiling that counts as a blow-up (J).
+  double passivityAllowance() const;
 
  private:
   // The message's "why it blew up" part for a non-finite state: the forces' story when they
@@ -75,6 +100,16 @@ class BlowUpCheck {
   std::string blameForces(Simulation& sim);
 
   double energyScale_ = 0.0;  // J
+  // J, the highest total energy (gravity included) the scene reached while energy came in;
+  // a passive scene may not rise above it by more than passivityAllowance().
+  double passiveCeiling_ = 0.0;
+  double energySwing_ = -1.0;  // J, setEnergySwing; negative: not measured
+  // Without a measured swing the allowance cannot know how far a stable step's energy swings
+  // near its limit (symplectic Euler's (1 + r) / (1 - r) has no bound as r -> 1), so a rise
+  // counts only when dt is past the limit of the linearised step (computed once per dt).
+  bool beyondLimitOrMeasured(Simulation& sim, double dt);
+  double limitDt_ = -1.0;    // s, the dt beyondLimit_ was computed for
+  bool beyondLimit_ = true;
   // The state at the last check that passed (or at arm()): where the forces are evaluated
   // again when the state turns non-finite.
   State last_;

@@ -24,6 +24,14 @@ class Integrator {
   // 0 for a method that is unstable at every dt without damping (explicit Euler).
   virtual double stabilityConstant() const = 0;
 
+  // Whether the method comes to rest where the forces balance (the scene's static
+  // equilibrium), as every method of forces does. One that solves the springs approximately
+  // each step (XPBD from zero multipliers, projective dynamics with a fixed number of
+  // iterations) rests elsewhere, lower, at a place that depends on dt: the scene's spring
+  // energy is then not the energy it dissipates (the blow-up check's passivity test leaves
+  // it alone), and its stability limit is taken where it rests (step_stability.hpp).
+  virtual bool restsAtStaticEquilibrium() const { return true; }
+
   // Forget any history (Verlet's previous positions) after the state was changed by hand.
   virtual void reset() {}
 

@@ -122,12 +122,21 @@ class Simulation {
   // ---- integrator and run control ----------------------------------------------------
   void setIntegrator(std::unique_ptr<Integrator> integrator);
   Integrator& integrator() const { return *integrator_; }
+  // Put `integrator` in place (as setIntegrator) and hand back the one that ran, options and
+  // all, to be put back later: stepStableDt settles the scene with symplectic Euler first.
+  std::unique_ptr<Integrator> exchangeIntegrator(std::unique_ptr<Integrator> integrator);
   // Restore the initial state (model edits stay), forget integrator history.
   void reset();
   // The state reset() returns to (stability estimates use it after a blow-up).
   const State& initialState() const { return initialState_; }
   // Turn the blow-up check off for studies that want to watch a method fail.
   void setBlowUpCheck(bool enabled) { blowUpCheckEnabled_ = enabled; }
+  bool blowUpCheckEnabled() const { return blowUpCheckEnabled_; }
+  // J, the energy scale the blow-up check measured when it was last armed (reset, edits).
+  double blowUpEnergyScale() const { return blowUpCheck_.energyScale(); }
+  // The integrator's energy swing on this scene for the passivity detector
+  // (BlowUpCheck::setEnergySwing; studies measure it at half the stability limit).
+  void setEnergySwing(double joules) { blowUpCheck_.setEnergySwing(joules); }
 
   // ---- diagnostics --------------------------------------------------------------------
   Energies energies() const;
@@ -137,6 +146,10 @@ class Simulation {
   // (springGershgorinBound); labs add the stiffness of their other forces (ground, gas,
   // contacts). lanczosEstimate (springlab/frequency_estimate.hpp) gives an estimate instead.
   virtual double angularFrequencyBound() const;
+  // Whether the scene itself puts energy in at the current state (wind, a pump still
+  // inflating): the blow-up check's passivity test then lets the energy rise. Moving pinned
+  // masses and the user's drags are seen without it. Default: a passive scene.
+  virtual bool suppliesEnergy() const { return false; }
 
   // ---- force terms, for the blow-up check's diagnosis -----------------------------------
   // The lab's force terms by name, indexed as its accumulateForces tests them with

@@ -19,6 +19,10 @@ struct RunSpec {
   int samples = 0;             // samples after t = 0; the run lasts samples * stepsPerSample steps
   double stiffnessScale = 1.0; // every spring's k is multiplied by this (stability maps)
   bool keepPositions = true;   // store every mass's position at each sample
+  // s, > 0: first measure the integrator's energy swing in a short run at this dt (half the
+  // stability limit) and let the blow-up check's passivity detector allow it
+  // (BlowUpCheck::setEnergySwing); 0: the detector's default allowance.
+  double swingDt = 0.0;
 };
 
 struct RunResult {
@@ -50,7 +54,13 @@ std::vector<double> observableSeries(const RunResult& run, const std::string& na
 // with every spring's k multiplied by stiffnessScale.
 double sceneLanczosEstimate(const Registry& registry, const SceneDocument& scene, double stiffnessScale = 1.0);
 
-// The integrator's stability constant c (dt < c / w_max), by name.
+// The exact stability limit of the integrator's step on the scene (stepStableDt: the
+// linearised step at the settled state, dampers, contacts and pressure included), with every
+// spring's k multiplied by stiffnessScale. NotImplemented propagates.
+double sceneStepStableDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                         double stiffnessScale = 1.0);
+
+// The integrator's stability constant c (dt < c / w_max for undamped springs), by name.
 double stabilityConstant(const Registry& registry, const std::string& integrator);
 
 // The integrators a study compares: `requested` as given, or else every registered one that

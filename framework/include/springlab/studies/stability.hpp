@@ -1,9 +1,11 @@
 #pragma once
 // Where each method stops being stable: the largest dt that survives a fixed simulated time
-// under the blow-up check, found by bracketing and bisection, against the prediction
-// c / w_max (c: the method's stability constant, w_max: the Lanczos estimate at the start).
+// under the blow-up check, found by bracketing and bisection, against the prediction: the
+// exact limit of the step that runs (stepStableDt: the linearised step at the start, with
+// the scene's dampers, contacts and pressure), beside the undamped rule c / w_max (c: the
+// method's stability constant, w_max: the Lanczos estimate at the start).
 // And a map over stiffness x dt for one integrator: stable and unstable cells, with the
-// predicted boundary c / w_max(stiffness).
+// predicted boundary at each stiffness.
 #include <string>
 #include <vector>
 
@@ -13,7 +15,9 @@ namespace springlab::studies {
 
 struct StabilityOptions {
   std::vector<std::string> integrators;  // empty: every registered integrator
-  double duration = 0.0;     // s of simulated time per trial; 0: 300 periods of the stiffest mode
+  double duration = 0.0;     // s of simulated time per trial; 0: 300 periods of the stiffest mode, or
+                             // longer, until a mode growing as the step does at 1.03 x the
+                             // predicted limit has grown by 1e20
   double tolerance = 0.005;  // relative width of the final bracket
   long maxSteps = 4000000;   // a trial needing more steps is not run (the bracket stops there)
   int threads = 0;
@@ -25,8 +29,10 @@ struct StabilityOptions {
 struct CriticalDt {
   std::string integrator;
   double stabilityConstant = 0.0;  // c
-  double predicted = 0.0;          // s, c / w_max; 0 when the method has no undamped limit
+  double undamped = 0.0;           // s, c / w_max; 0 when the method has no undamped limit
+  double predicted = 0.0;          // s, stepStableDt: 0 no stable dt, +inf no limit
   double measured = 0.0;           // s
+  double duration = 0.0;           // s of simulated time per trial
   int trials = 0;
 };
 
@@ -42,10 +48,18 @@ struct Stability {
 // The default trial duration of a scene: 300 periods of its stiffest mode.
 double defaultStabilityDuration(double maxAngularFrequency);
 
-// Largest stable dt of one integrator, bisection from a first guess.
+// The trial time of one method: at least `atLeast`, and long enough for a mode that grows as
+// the linearised step does at 1.03 x the predicted limit to grow by 1e20 (from round-off to
+// a motion the blow-up check sees), at most 100 x atLeast.
+double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                              double predicted, double atLeast);
+
+// Largest stable dt of one integrator, bisection from a first guess. With swingDt > 0 (half
+// the predicted limit) each trial's passivity detector allows the integrator's energy swing
+// measured at swingDt (RunSpec::swingDt).
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                       double duration, double firstGuess, double tolerance = 0.005, long maxSteps = 4000000,
-                      double stiffnessScale = 1.0);
+                      double stiffnessScale = 1.0, double swingDt = 0.0);
 
 Stability stability(const Registry& registry, const SceneDocument& scene, const StabilityOptions& options);
 
@@ -74,6 +88,7 @@ struct StabilityMap {
   double duration = 0.0;
   std::vector<double> scales;
   std::vector<double> maxAngularFrequency;  // [scales] rad/s
+  std::vector<double> predicted;            // [scales] s, stepStableDt at each stiffness
   std::vector<StabilityMapCell> cells;
 };
 

@@ -38,6 +38,8 @@ class Net final : public Simulation {
   // The terms of accumulateForces, in the order of ForceTerm (the blow-up check names one).
   enum ForceTerm { kSprings, kGravityAndAir, kWind };
   std::vector<std::string> forceTermNames() const override;
+  // A wind of nonzero speed (or strength) works on the cloth; a still air only drags.
+  bool suppliesEnergy() const override { return settings.wind.strength > 0.0; }
 
   // Front end.
   std::string kind() const override { return "net"; }

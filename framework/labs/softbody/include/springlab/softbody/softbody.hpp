@@ -66,6 +66,10 @@ class SoftBody final : public Simulation {
   // The terms of accumulateForces, in the order of ForceTerm (the blow-up check names one).
   enum ForceTerm { kSprings, kGravityAndAir, kPressure, kWind, kContact };
   std::vector<std::string> forceTermNames() const override;
+  // The wind works on the body, and the pump until the gas is in.
+  bool suppliesEnergy() const override {
+    return (p_.windDrag > 0.0 && p_.wind.squaredNorm() > 0.0) || (p_.gas > 0.0 && state.time < p_.inflationTime);
+  }
 
   // Front end.
   std::string kind() const override { return "soft body"; }

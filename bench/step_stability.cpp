@@ -1,0 +1,45 @@
+// The stability limit of the step that runs (springlab/step_stability.hpp) on the hanging
+// cloth, as the stability chart and the blow-up message compute it: settling, the stiffest
+// and most damped modes (Lanczos), and a bisection on dt of finite-difference runs.
+//   StepStableDt/r/method: scenes/net_hanging.json (its sphere and stretch limit as shipped),
+//     r x r masses; method 0 symplectic_euler, 1 rk4, 2 implicit_euler (the scene's own).
+//     Counters: the limit found (ms), and CPU time per prediction (s), beside wall time.
+#include <ctime>
+
+#include <springlab/step_stability.hpp>
+
+#include "bench_support.hpp"
+
+namespace springlab::bench {
+namespace {
+
+const char* const kStabilityMethods[] = {"symplectic_euler", "rk4", "implicit_euler"};
+
+void StepStableDt(benchmark::State& bench) {
+  const int r = static_cast<int>(bench.range(0));
+  const std::string method = kStabilityMethods[bench.range(1)];
+  useThreads(1);
+  double limit = 0.0, cpu = 0.0;
+  for (auto _ : bench) {
+    bench.PauseTiming();
+    LoadedScene scene = loadScene("net_hanging.json", {"net.resolution=" + std::to_string(r)});
+    scene.sim->setIntegrator(registry().makeIntegrator(method));
+    const std::clock_t start = std::clock();
+    bench.ResumeTiming();
+    limit = stepStableDt(*scene.sim);
+    bench.PauseTiming();
+    cpu += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+    bench.ResumeTiming();
+  }
+  bench.counters["limit_ms"] = 1e3 * limit;
+  bench.counters["cpu_s"] = cpu / static_cast<double>(bench.iterations());
+}
+BENCHMARK(StepStableDt)
+    ->ArgNames({"r", "method"})
+    ->ArgsProduct({{16, 32, 64}, {0, 1, 2}})
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace springlab::bench

@@ -1,0 +1,78 @@
+#pragma once
+// The stability limit of the step that runs: the largest dt at which the integrator's own
+// one-step map, linearised at the state the scene settles to, has spectral radius at most 1.
+//
+// The state: where the scene settles (dynamic relaxation from its start, see
+// StepStabilityOptions::settle), since a run blows up near the state it spends its time in;
+// a start far from rest only passes through. No constant per integrator: the map is the scene's real step (Simulation::operate: the
+// integrator, then the lab's after-step corrections), with every force the scene has
+// (spring dampers, air, wind, pressure, contacts active at that state). Its Jacobian J is
+// never assembled; it acts on a perturbation as the difference of two runs, one from the
+// state and one from the state moved by a small perturbation (1e-6 of the scene's lengths).
+//
+// Why runs and not one step per vector: an integrator may keep history between steps
+// (position Verlet's previous positions, velocity Verlet's accelerations), which a single
+// step from a hand-set state cannot see. After one step the history of the methods here is a
+// function of the state, so each run is taken two steps: its differences d_1, d_2 from the
+// unperturbed run satisfy d_2 = J d_1. With X = [d_1 ...] and Y = [d_2 ...] over several
+// runs, J on X's range is Y X^+, and its eigenvalues (Rayleigh-Ritz) those of J there.
+// - Small systems (at most denseBelow free coordinates): one run per coordinate, so X spans
+//   everything and the eigenvalues are J's own (dense, exact up to the finite differences).
+// - Larger ones: runs along the modes that fail first, the stiffest modes of M^-1 K and the
+//   most damped of M^-1 C at the settled state (Lanczos on finite differences of the
+//   forces), each as a displacement and as a velocity. For a linear scene with proportional
+//   damping (spring dampers on the springs' pairs, air) this subspace is invariant under the
+//   step and the result is exact; with other damping, contacts or pressure it is the
+//   Rayleigh-Ritz estimate on the modes most likely to fail. A Krylov sequence of one long
+//   run (Arnoldi on snapshots) was tried first: its Ritz values of the far-from-normal step
+//   map land outside the unit circle at any dt.
+
+// The limit is then a bracket (doubling or halving from a first guess) and a bisection on
+// dt. A closed form per method and mode (undamped c / w_max, explicit Euler's kd / k,
+// symplectic Euler's w^2 dt^2 + 2 gamma dt < 4, the stability polynomials of RK4 and the
+// midpoint rule) is a test of this, not part of it.
+#include <string>
+
+#include "springlab/simulation.hpp"
+
+namespace springlab {
+
+struct StepStabilityOptions {
+  int modes = 8;                 // stiffest and most damped modes each: 4 x modes runs per dt
+  int denseBelow = 500;          // build the whole Jacobian when the free coordinates (positions
+                                 // and velocities) number at most this (the 80-mass rope: 480;
+                                 // its modal runs missed both Verlets' limits 20-fold, since the
+                                 // first step's image of the modes is not invariant there)
+  double relativePerturbation = 1e-6;  // of the scene's typical length (and length x w_max for velocities)
+  double radiusSlack = 1e-6;     // a spectral radius above 1 + this is unstable (the finite
+                                 // differences resolve the radius to about 1e-8)
+  double tolerance = 2e-3;       // relative width of the final dt bracket
+  double largestFactor = 1000.0; // stable up to this times the first guess: unbounded
+  double smallestFactor = 1e-4;  // unstable down to this times the first guess: no stable dt
+  bool settle = true;            // linearise at the settled state (false: at the initial state)
+  long settleEvaluations = 400000;  // settling budget: force evaluations x free coordinates
+  long settleSteps = 4000;       // and at most this many steps (at least 100)
+};
+
+// The spectral radius of the scene's linearised step at dt, at its settled state.
+struct StepSpectrum {
+  double radius = 0.0;  // largest |eigenvalue| found
+  int steps = 0;        // steps of the scene taken to find it
+};
+StepSpectrum stepSpectralRadius(Simulation& sim, double dt, const StepStabilityOptions& options = {});
+
+// The largest dt with spectral radius <= 1 + slack. `firstGuess` starts the bracket (the
+// undamped c / w_max, or 2 / w_max); +inf when stable up to largestFactor x firstGuess, 0
+// when unstable down to smallestFactor x firstGuess.
+struct StepStabilityLimit {
+  double dt = 0.0;     // s
+  int evaluations = 0; // spectral radii computed
+  int steps = 0;       // steps of the scene taken
+};
+StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const StepStabilityOptions& options = {});
+
+// The limit of sim's integrator on sim's scene, bracketed from 2 / w_max (w_max: the Lanczos
+// estimate at the initial state). Leaves the simulation reset to its initial state.
+double stepStableDt(Simulation& sim, const StepStabilityOptions& options = {});
+
+}  // namespace springlab

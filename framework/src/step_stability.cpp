@@ -1,0 +1,674 @@
+#include "springlab/step_stability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+
+#include "springlab/frequency_estimate.hpp"
+#include "springlab/symplectic_euler.hpp"
+
+namespace springlab {
+
+namespace {
+
+// One free coordinate: mass i, axis c.
+struct Dof {
+  int mass;
+  int axis;
+};
+
+// The coordinates that can move at the initial state, positions then velocities.
+std::vector<Dof> freeCoordinates(const Simulation& sim) {
+  std::vector<Dof> dofs;
+  for (int i = 0; i < sim.numOfMasses(); ++i) {
+    if (sim.inverseMass(i) == 0.0) continue;
+    for (int c = 0; c < sim.dimension; ++c) dofs.push_back({i, c});
+  }
+  return dofs;
+}
+
+// Typical length of the scene: the springs' mean rest length, else the extent of the masses.
+double typicalLength(const Simulation& sim) {
+  double sum = 0.0;
+  for (const Spring& s : sim.springs()) sum += s.springLength;
+  if (!sim.springs().empty() && sum > 0.0) return sum / static_cast<double>(sim.springs().size());
+  const Bounds b = sim.Simulation::reach();
+  const double extent = (b.hi - b.lo).norm();
+  return extent > 0.0 ? extent : 1.0;
+}
+
+Eigen::VectorXd randomDirection(int size, unsigned seed);
+template <class Apply>
+Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed, bool distinctOnly);
+
+// Runs the scene from its initial state, or from it moved by a perturbation, and records
+// the free coordinates after each step, made dimensionless: positions over the typical
+// length, velocities over that length times w_max. The blow-up check is off meanwhile, and
+// the simulation is left reset.
+class LinearisedRuns {
+ public:
+  LinearisedRuns(Simulation& sim, const StepStabilityOptions& o)
+      : sim_(sim), dofs_(freeCoordinates(sim)), solverTolerance_(sim.solver.tolerance) {
+    // An implicit step's linear solve stops at a residual relative to the whole right-hand
+    // side: an error of that size, not proportional to the perturbation, would swamp the
+    // finite differences. The linearised step is the step with its system solved exactly (a
+    // solver error that does not grow is not an instability), so the runs here solve tightly.
+    sim_.solver.tolerance = std::min(sim_.solver.tolerance, 1e-12);
+    sim_.reset();
+    length_ = typicalLength(sim_);
+    frequency_ = stiffestFrequency(sim_.initialState());
+    // Where to linearise: the state the scene settles to, not the state it starts in. A
+    // damped scene spends all but its first moments near its rest state, and a run blows up
+    // there or not at all: a start far from rest (the mass on its spring released stretched,
+    // the rope released straight) stiffens or softens the springs for a few steps only, and
+    // growth over a few steps is a transient, not an instability (the mass on its spring:
+    // RK4's limit at its start is 0.077 s, the runs' and the closed form's at rest 0.283 s).
+    // Scenes that never settle (wind, a moving anchor) are linearised where the settling
+    // budget leaves them, a state of their ordinary motion.
+    if (o.settle) base_ = settledState(o);
+    if (!base_.pos.empty()) frequency_ = std::max(frequency_, stiffestFrequency(base_));
+    // Finite-difference steps relative to the state's own scale: a perturbation below the
+    // round-off of the coordinates (a scene far from the origin, a large velocity) would
+    // measure round-off, so it is at least sqrt(machine epsilon) times the largest of them.
+    double position = 0.0, velocity = 0.0;
+    const State& at = base_.pos.empty() ? sim_.initialState() : base_;
+    for (const Dof& d : dofs_) {
+      position = std::max(position, std::abs(at.pos[d.mass][d.axis]));
+      velocity = std::max(velocity, std::abs(at.vel[d.mass][d.axis]));
+    }
+    epsilon_ = o.relativePerturbation;
+    const double roundOff = std::sqrt(std::numeric_limits<double>::epsilon());
+    positionStep_ = std::max(epsilon_ * length_, roundOff * position);
+    velocityStep_ = std::max(epsilon_ * length_ * frequency_, roundOff * velocity);
+    restore();
+  }
+
+  // The state the runs start from (the method's rest at the dt probed, else the settled
+  // state), with the integrator's history forgotten.
+  void restore() {
+    sim_.reset();
+    const State& from = own_.pos.empty() ? base_ : own_;
+    if (from.pos.empty()) return;
+    sim_.state.pos = from.pos;
+    sim_.state.vel = from.vel;
+    sim_.state.time = from.time;
+  }
+
+  // Where the method itself rests at dt. A method that solves the springs approximately
+  // (XPBD or projective dynamics with a fixed number of iterations, each step started from
+  // the inertial prediction) does not rest at the force equilibrium the settling found but
+  // lower, at a place that depends on dt (the 8 x 8 fabric: XPBD at 20 ms hangs at 8 %
+  // strain, not 2.6 %). Its step linearised at the force equilibrium is a map at a point it
+  // moves away from, with a radius of 1.37 there although the cloth comes to rest; at its own
+  // rest the radius is below 1.
+  //
+  // So, for a method that says it rests elsewhere (Integrator::restsAtStaticEquilibrium),
+  // the settling goes on with its own step at dt (kinetic damping, as settledState) until a
+  // step leaves the state in place (it moves no coordinate by the finite differences'
+  // perturbation) or the budget runs out. Where that settling grows or turns non-finite, the
+  // runs start from the settled state (an instability is the linearisation's to find).
+  void settleAt(double dt, const StepStabilityOptions& o) {
+    if (dt == ownDt_) return;
+    ownDt_ = dt;
+    own_ = State{};
+    if (base_.pos.empty() || sim_.integrator().restsAtStaticEquilibrium()) return;
+    const Stats stats = sim_.stats;
+    const bool checked = sim_.blowUpCheckEnabled();
+    sim_.setBlowUpCheck(false);
+    // How far a step moves a state, in units of the finite differences' perturbation.
+    auto motion = [&](const State& before) {
+      double moved = 0.0;
+      for (const Dof& d : dofs_) {
+        moved = std::max({moved, std::abs(sim_.state.pos[d.mass][d.axis] - before.pos[d.mass][d.axis]) / positionStep_,
+                          std::abs(sim_.state.vel[d.mass][d.axis] - before.vel[d.mass][d.axis]) / velocityStep_});
+      }
+      return moved;
+    };
+    restore();
+    const double start = sim_.energies().total();
+    const double scale = sim_.blowUpEnergyScale();
+    const long budget = std::clamp<long>(o.settleEvaluations / std::max<long>(1, static_cast<long>(dofs_.size())),
+                                         100, o.settleSteps);
+    double kinetic = 0.0;
+    for (long k = 0; k < budget; ++k) {
+      const State before = sim_.state;
+      try {
+        sim_.operate(dt);
+      } catch (const std::exception&) {
+        own_ = State{};
+        break;
+      }
+      ++steps_;
+      if (motion(before) < 1.0) {
+        if (k > 0) own_ = before;  // the method's rest (k = 0: the settled state is it)
+        break;
+      }
+      const Energies e = sim_.energies();
+      if (!std::isfinite(e.total()) || e.total() > start + scale) {
+        own_ = State{};
+        break;
+      }
+      if (e.kinetic < kinetic) {
+        for (Vec3& v : sim_.state.vel) v.setZero();
+        sim_.integrator().reset();
+        kinetic = 0.0;
+      } else {
+        kinetic = e.kinetic;
+      }
+      if (k + 1 == budget) own_ = sim_.state;  // the budget's end: where its settling got to
+    }
+    if (!own_.pos.empty()) {
+      for (Vec3& v : own_.vel) v.setZero();
+    }
+    sim_.setBlowUpCheck(checked);
+    sim_.reset();
+    sim_.stats = stats;
+  }
+
+  ~LinearisedRuns() {
+    sim_.solver.tolerance = solverTolerance_;
+    sim_.reset();
+  }
+  LinearisedRuns(const LinearisedRuns&) = delete;
+  LinearisedRuns& operator=(const LinearisedRuns&) = delete;
+
+  int size() const { return 2 * static_cast<int>(dofs_.size()); }
+  double maxAngularFrequency() const { return frequency_; }
+  int steps() const { return steps_; }
+
+  // Snapshots [size x (count + 1)] after 1 .. count + 1 steps at dt, starting from the
+  // initial state plus epsilon times `direction` (dimensionless, largest entry 1; empty: none).
+  // Stops early (fewer columns) when the state turns non-finite.
+  Eigen::MatrixXd run(double dt, int count, const Eigen::VectorXd& direction) {
+    restore();
+    State& s = sim_.state;
+    const int n = static_cast<int>(dofs_.size());
+    if (direction.size() == size()) {
+      for (int j = 0; j < n; ++j) {
+        s.pos[dofs_[j].mass][dofs_[j].axis] += positionStep_ * direction[j];
+        s.vel[dofs_[j].mass][dofs_[j].axis] += velocityStep_ * direction[n + j];
+      }
+    }
+    return runFromCurrent(dt, count);
+  }
+
+  // Steps from the current state (the integrator's history forgotten), as run() records them.
+  Eigen::MatrixXd runFromCurrent(double dt, int count = 0) {
+    State& s = sim_.state;
+    const int n = static_cast<int>(dofs_.size());
+    sim_.integrator().reset();
+    const bool checked = sim_.blowUpCheckEnabled();
+    sim_.setBlowUpCheck(false);
+    Eigen::MatrixXd out(size(), count + 1);
+    int columns = 0;
+    try {
+      for (int k = 0; k <= count; ++k) {
+        sim_.operate(dt);
+        ++steps_;
+        bool finite = true;
+        for (int j = 0; j < n; ++j) {
+          out(j, k) = s.pos[dofs_[j].mass][dofs_[j].axis] / length_;
+          out(n + j, k) = s.vel[dofs_[j].mass][dofs_[j].axis] / (length_ * frequency_);
+          finite = finite && std::isfinite(out(j, k)) && std::isfinite(out(n + j, k));
+        }
+        if (!finite) break;
+        columns = k + 1;
+      }
+    } catch (...) {
+      sim_.setBlowUpCheck(checked);
+      sim_.reset();
+      throw;
+    }
+    // The simulation is left where the run ended (the next run restores its start, the
+    // destructor resets it): a reset per run re-arms the blow-up check, an energy sum over
+    // every mass, 4 % of the 64 x 64 cloth's prediction.
+    sim_.setBlowUpCheck(checked);
+    return out.leftCols(columns);
+  }
+
+  // The perturbations in the recorded (dimensionless) coordinates: positions over the typical
+  // length, velocities over that length times w_max.
+  Eigen::VectorXd perturbationScale() const {
+    const Eigen::Index n = static_cast<Eigen::Index>(dofs_.size());
+    Eigen::VectorXd scale(2 * n);
+    scale.head(n).setConstant(positionStep_ / length_);
+    scale.tail(n).setConstant(velocityStep_ / (length_ * frequency_));
+    return scale;
+  }
+
+  // The largest angular frequency at a state: Lanczos on the forces' Jacobian there, else the
+  // lab's bound; 1 rad/s when neither finds one.
+  double stiffestFrequency(const State& at) {
+    const Stats stats = sim_.stats;
+    double w = 0.0;
+    try {
+      w = lanczosEstimate(sim_, at).maxAngularFrequency;
+    } catch (const std::exception&) {
+      w = 0.0;
+    }
+    sim_.stats = stats;
+    if (!(w > 0.0) || !std::isfinite(w)) w = sim_.angularFrequencyBound();
+    return w > 0.0 && std::isfinite(w) ? w : 1.0;
+  }
+
+  // Dynamic relaxation with kinetic damping: symplectic Euler (the framework's own, with the
+  // lab's after-step corrections) at a quarter of its undamped limit, every velocity set to
+  // zero whenever the kinetic energy passes a peak, until the first such peak (see below) or
+  // the budget of force evaluations runs out (the 64 x 64 cloth gets about a hundred steps: its
+  // springs' local tension, which sets the stiffest modes, forms within those). The step
+  // halves and the settling starts again if the energy grows (damping or contacts stiffer
+  // than w_max says); the start state is kept if it never settles stably.
+  State settledState(const StepStabilityOptions& o) {
+    const Stats stats = sim_.stats;
+    const bool checked = sim_.blowUpCheckEnabled();
+    sim_.setBlowUpCheck(false);
+    std::unique_ptr<Integrator> own = sim_.exchangeIntegrator(std::make_unique<SymplecticEuler>());
+    const long budget = std::clamp<long>(o.settleEvaluations / std::max<long>(1, static_cast<long>(dofs_.size())),
+                                         100, o.settleSteps);
+    State settled;
+    for (double dt = 0.5 / frequency_, tries = 0; tries < 4 && settled.pos.empty(); dt *= 0.5, ++tries) {
+      sim_.reset();
+      const double start = sim_.energies().total();
+      const double scale = sim_.blowUpEnergyScale();
+      double kinetic = 0.0;
+      bool grew = false;
+      for (long k = 0; k < budget; ++k) {
+        try {
+          sim_.simulate(dt);
+        } catch (const std::exception&) {
+          grew = true;
+          break;
+        }
+        const Energies e = sim_.energies();
+        if (!std::isfinite(e.total()) || e.total() > start + scale) {
+          grew = true;
+          break;
+        }
+        if (e.kinetic < kinetic) {
+          for (Vec3& v : sim_.state.vel) v.setZero();
+          sim_.integrator().reset();
+          kinetic = 0.0;
+        } else {
+          kinetic = e.kinetic;
+        }
+        // Stop at the first peak of the kinetic energy after ten steps (its velocities just set
+        // to zero), or at the budget: the first swing has turned and the springs' tension has
+        // formed. Settling on to full rest (no mass moving a billionth of the typical length
+        // in a step) moved the limits by up to 2 % (the inflated ball: 4.28 -> 4.22 ms, where
+        // the runs fail at 4.41 ms) and costs the whole budget on a cloth.
+        double fastest = 0.0;
+        for (const Dof& d : dofs_) fastest = std::max(fastest, std::abs(sim_.state.vel[d.mass][d.axis]));
+        if (k > 10 && fastest * dt < 1e-9 * length_ && kinetic == 0.0) break;
+      }
+      if (!grew) settled = sim_.state;
+    }
+    sim_.exchangeIntegrator(std::move(own));
+    sim_.setBlowUpCheck(checked);
+    sim_.reset();
+    sim_.stats = stats;
+    if (!settled.pos.empty()) {
+      // The settled state at rest: only the free masses' motion is relaxed away.
+      for (Vec3& v : settled.vel) v.setZero();
+    }
+    return settled;
+  }
+
+  // Whether the integrator keeps no history between steps: two steps from the state land
+  // where one step, a reset and a step from its result land. Then the map is probed one step
+  // from the state itself (the Jacobian there, even when the scene moves); otherwise by the
+  // second step of two (d_2 = J d_1 after the history has formed). The state is perturbed
+  // first: at rest in equilibrium nothing moves, and every method would look history-free.
+  bool historyFree(double dt) {
+    if (historyFree_) return *historyFree_;
+    const Eigen::VectorXd nudge = randomDirection(size(), 2026);
+    const Eigen::MatrixXd twoSteps = run(dt, 1, nudge);
+    const Eigen::MatrixXd oneStep = run(dt, 0, nudge);
+    bool same = twoSteps.cols() == 2 && oneStep.cols() == 1;
+    if (same) {
+      restore();
+      State& s = sim_.state;
+      const int n = static_cast<int>(dofs_.size());
+      for (int j = 0; j < n; ++j) {
+        s.pos[dofs_[j].mass][dofs_[j].axis] = oneStep(j, 0) * length_;
+        s.vel[dofs_[j].mass][dofs_[j].axis] = oneStep(n + j, 0) * length_ * frequency_;
+      }
+      s.time += dt;
+      const Eigen::MatrixXd again = runFromCurrent(dt);
+      same = again.cols() == 1 && (again.col(0) - twoSteps.col(1)).cwiseAbs().maxCoeff() <=
+                                      1e-12 * std::max(1.0, twoSteps.col(1).cwiseAbs().maxCoeff());
+    }
+    historyFree_ = same;
+    return same;
+  }
+
+  // modalDirections(count), computed once.
+  const Eigen::MatrixXd& directions(int count) {
+    if (directions_.cols() == 0) directions_ = modalDirections(count);
+    return directions_;
+  }
+
+  // Directions (orthonormal columns, dimensionless state coordinates) that hold the modes
+  // which set a limit: the `count` stiffest modes of M^-1 K and the `count` most damped of
+  // M^-1 C at the initial state (K = -dF/dx, C = -dF/dv by central differences of the
+  // forces), each as a displacement and as a velocity. For a linear scene with proportional
+  // damping these are invariant under the step, and the Ritz values on them are the modes'
+  // exact eigenvalues; otherwise they are the modes most likely to fail first.
+  Eigen::MatrixXd modalDirections(int count) {
+    restore();
+    const int n = static_cast<int>(dofs_.size());
+    const State at = sim_.state;
+    const Stats stats = sim_.stats;
+    std::vector<Vec3> plus, minus;
+    // B u = M^-1/2 A M^-1/2 u with A d = -(F(moved by +h d) - F(moved by -h d)) / 2h, moving
+    // positions (A = K) or velocities (A = C).
+    auto mass = [&](int j) { return 1.0 / sim_.inverseMass(dofs_[j].mass); };
+    auto symmetric = [&](bool velocities) {
+      return [&, velocities](const Eigen::VectorXd& u) {
+        Eigen::VectorXd d(n);
+        for (int j = 0; j < n; ++j) d[j] = u[j] / std::sqrt(mass(j));
+        Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
+        const double largest = d.cwiseAbs().maxCoeff();
+        if (largest == 0.0) return out;
+        const double h = (velocities ? velocityStep_ : positionStep_) / largest;
+        State up = at, down = at;
+        for (int j = 0; j < n; ++j) {
+          Vec3& a = velocities ? up.vel[dofs_[j].mass] : up.pos[dofs_[j].mass];
+          Vec3& b = velocities ? down.vel[dofs_[j].mass] : down.pos[dofs_[j].mass];
+          a[dofs_[j].axis] += h * d[j];
+          b[dofs_[j].axis] -= h * d[j];
+        }
+        sim_.evaluateForces(up, plus);
+        sim_.evaluateForces(down, minus);
+        for (int j = 0; j < n; ++j) {
+          const int i = dofs_[j].mass, c = dofs_[j].axis;
+          out[j] = -(plus[i][c] - minus[i][c]) / (2.0 * h) / std::sqrt(mass(j));
+        }
+        return out;
+      };
+    };
+    const Eigen::MatrixXd stiff = topEigenvectors(symmetric(false), n, count, 2024, false);
+    const Eigen::MatrixXd damped = topEigenvectors(symmetric(true), n, count, 2025, true);
+    sim_.stats = stats;
+
+    // Mode shapes x = M^-1/2 psi, as displacements and as velocities.
+    Eigen::MatrixXd U = Eigen::MatrixXd::Zero(size(), 2 * (stiff.cols() + damped.cols()));
+    int column = 0;
+    for (const Eigen::MatrixXd* modes : {&stiff, &damped}) {
+      for (Eigen::Index c = 0; c < modes->cols(); ++c) {
+        Eigen::VectorXd shape(n);
+        for (int j = 0; j < n; ++j) shape[j] = (*modes)(j, c) / std::sqrt(mass(j));
+        U.col(column++).head(n) = shape;
+        U.col(column++).tail(n) = shape;
+      }
+    }
+    // Orthonormal (Gram-Schmidt, twice), without the directions the two sets share.
+    Eigen::Index kept = 0;
+    for (Eigen::Index c = 0; c < U.cols(); ++c) {
+      Eigen::VectorXd v = U.col(c);
+      const double before = v.norm();
+      for (int pass = 0; pass < 2; ++pass) v -= U.leftCols(kept) * (U.leftCols(kept).transpose() * v);
+      if (v.norm() > 1e-8 * before) U.col(kept++) = v.normalized();
+    }
+    return U.leftCols(std::max<Eigen::Index>(1, kept));
+  }
+
+ private:
+  Simulation& sim_;
+  std::vector<Dof> dofs_;
+  double length_ = 1.0;     // m
+  double frequency_ = 1.0;  // rad/s
+  double epsilon_ = 1e-6;
+  double positionStep_ = 1e-6;  // m, the finite differences' perturbation of a position
+  double velocityStep_ = 1e-6;  // m/s, of a velocity
+  double solverTolerance_;  // the scene's own, put back when the runs end
+  State base_;              // where the map is linearised: the settled state (empty: the initial one)
+  State own_;               // the method's own rest at ownDt_ where it is not base_ (empty: base_)
+  double ownDt_ = -1.0;     // s, the dt own_ was settled for
+  int steps_ = 0;
+  Eigen::MatrixXd directions_;  // [size x ...] modalDirections
+  std::optional<bool> historyFree_;
+
+ public:
+  // The coordinates a contact holds at the settled state (found once, by radiusOf's first
+  // dense probe; empty until then).
+  std::vector<char> held;
+};
+
+// The largest |eigenvalue| of the map that takes the columns of X to those of Y, on X's
+// range (Rayleigh-Ritz): with the Gram matrix G = X^T X = W L W^T, the map in the
+// orthonormal basis X W L^-1/2 is L^-1/2 W^T (X^T Y) W L^-1/2. Directions with
+// sqrt(L) below 1e-7 of the largest are dropped: there the differences are round-off (a mode
+// the step all but removes, whose eigenvalue is near 0 and cannot be the largest).
+double ritzRadius(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+  if (X.cols() == 0) return 0.0;
+  const Eigen::MatrixXd G = X.transpose() * X;
+  const Eigen::MatrixXd H = X.transpose() * Y;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(G);
+  const Eigen::VectorXd& l = gram.eigenvalues();  // ascending
+  const double largest = l[l.size() - 1];
+  if (!(largest > 0.0)) return 0.0;
+  Eigen::Index first = 0;
+  while (first < l.size() && !(l[first] > 1e-14 * largest)) ++first;
+  const Eigen::Index rank = l.size() - first;
+  const Eigen::MatrixXd B =
+      gram.eigenvectors().rightCols(rank) * l.tail(rank).cwiseSqrt().cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd A = B.transpose() * H * B;
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, false);
+  return eig.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// A fixed pseudo-random direction (the same on every run), largest entry 1.
+Eigen::VectorXd randomDirection(int size, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Eigen::VectorXd u(size);
+  for (int j = 0; j < size; ++j) u[j] = uniform(random);
+  return u / u.cwiseAbs().maxCoeff();
+}
+
+// The k eigenvectors of largest eigenvalue of a symmetric operator of size n, by Lanczos
+// with full reorthogonalisation from a fixed pseudo-random start (columns, unit length).
+template <class Apply>
+Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed, bool distinctOnly) {
+  const int steps = std::min(n, std::max(3 * k, 60));
+  Eigen::MatrixXd basis(n, steps);
+  basis.col(0) = randomDirection(n, seed).normalized();
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(steps, steps);
+  int m = steps;
+  for (int j = 0; j < steps; ++j) {
+    Eigen::VectorXd w = apply(Eigen::VectorXd(basis.col(j)));
+    T(j, j) = basis.col(j).dot(w);
+    for (int pass = 0; pass < 2; ++pass) w -= basis.leftCols(j + 1) * (basis.leftCols(j + 1).transpose() * w);
+    const double b = w.norm();
+    if (j + 1 == steps || b <= 1e-12 * std::max(std::abs(T(j, j)), 1e-300)) {
+      m = j + 1;
+      break;
+    }
+    T(j, j + 1) = T(j + 1, j) = b;
+    basis.col(j + 1) = w / b;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(T.topLeftCorner(m, m));
+  // distinctOnly: only eigenvalues well above the smallest. Damping that is the same on
+  // every mass (air friction alone) has no preferred vectors, and arbitrary ones would spoil
+  // the subspace the stiffness picked.
+  const Eigen::VectorXd& values = eig.eigenvalues();  // ascending
+  int kept = 0;
+  while (kept < std::min(k, m) && (!distinctOnly || values[m - 1 - kept] > 1.5 * std::max(values[0], 0.0))) ++kept;
+  return basis.leftCols(m) * eig.eigenvectors().rightCols(kept);
+}
+
+StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOptions& o) {
+  StepSpectrum out;
+  const int before = runs.steps();
+  const int n = runs.size();
+  if (n == 0) return out;
+  // Every coordinate (a small system: the whole Jacobian) or the modal directions; for each,
+  // its run against the unperturbed one.
+  runs.settleAt(dt, o);
+  const Eigen::MatrixXd U = n <= o.denseBelow ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n)) : runs.directions(o.modes);
+  const bool oneStep = runs.historyFree(dt);
+  const Eigen::MatrixXd base = runs.run(dt, oneStep ? 0 : 1, {});
+  const Eigen::VectorXd scale = runs.perturbationScale();
+  // The first dense probe takes both sides of every coordinate. Where the two disagree the
+  // step is not differentiable there: a mass resting on a collider, whose push inwards is
+  // projected away (and kicks its velocity by the push over dt) while a pull outwards moves
+  // freely. That coordinate is held by its contact, not an oscillator of the step: it is left
+  // out of the Rayleigh-Ritz subspace from then on (the contacts of the settled state do not
+  // depend on dt). The modal directions, spread over many masses, are probed on one side.
+  const bool dense = n <= o.denseBelow;
+  const bool findHeld = dense && runs.held.empty();
+  if (findHeld) runs.held.assign(static_cast<std::size_t>(n), 0);
+  const int last = oneStep ? 0 : 1;
+  Eigen::MatrixXd X(n, U.cols()), Y(n, U.cols());
+  Eigen::Index kept = 0;
+  for (Eigen::Index j = 0; j < U.cols(); ++j) {
+    if (dense && !findHeld && runs.held[static_cast<std::size_t>(j)]) continue;
+    const Eigen::VectorXd u = U.col(j) / U.col(j).cwiseAbs().maxCoeff();
+    const Eigen::MatrixXd moved = runs.run(dt, last, u);
+    const Eigen::MatrixXd opposite = findHeld ? runs.run(dt, last, -u) : base;
+    if (moved.cols() < base.cols() || opposite.cols() < base.cols() || base.cols() < last + 1) {
+      out.radius = INFINITY;
+      out.steps = runs.steps() - before;
+      return out;
+    }
+    const Eigen::VectorXd y = moved.col(last) - base.col(last);
+    if (findHeld) {
+      const Eigen::VectorXd back = opposite.col(last) - base.col(last);
+      if ((y + back).norm() > 0.1 * std::max(y.norm(), back.norm())) {
+        runs.held[static_cast<std::size_t>(j)] = 1;  // one-sided: a contact
+        continue;
+      }
+    }
+    X.col(kept) = oneStep ? Eigen::VectorXd(u.cwiseProduct(scale)) : Eigen::VectorXd(moved.col(0) - base.col(0));
+    Y.col(kept) = y;
+    ++kept;
+  }
+  out.radius = ritzRadius(X.leftCols(kept), Y.leftCols(kept));
+  out.steps = runs.steps() - before;
+  return out;
+}
+
+}  // namespace
+
+StepSpectrum stepSpectralRadius(Simulation& sim, double dt, const StepStabilityOptions& options) {
+  LinearisedRuns runs(sim, options);
+  return radiusOf(runs, dt, options);
+}
+
+StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const StepStabilityOptions& o) {
+  LinearisedRuns runs(sim, o);
+  StepStabilityLimit out;
+  // The physics' own growth rate g at the settled state: a scene may rest at an unstable
+  // equilibrium (the 8 x 8 cloth draped over its movable sphere grows at about 15 /s), and
+  // any step that follows the physics then grows by 1 + g dt. Numerical instability is growth
+  // beyond that. The radius near dt = 0 is 1 + g dt + a dt^2 (a: the method's own error, the
+  // whole of explicit Euler's 1 + w^2 dt^2 / 2), so two small probes h and h/2 separate them:
+  // g = (4 (r(h/2) - 1) - (r(h) - 1)) / h. For a scene at a stable rest g is 0. A step may
+  // grow by up to 1 + 2 g dt: the margin takes the method's own error on the growing mode
+  // (symplectic Euler's r - 1 is 15.2 dt to 15.3 dt there), and costs little, since past the
+  // limit the radius climbs steeply (3.8 at twice symplectic Euler's limit on that cloth).
+  const double h = firstGuess / 8.0;
+  const double rh = radiusOf(runs, h, o).radius, rh2 = radiusOf(runs, 0.5 * h, o).radius;
+  out.evaluations += 2;
+  const double growth = std::isfinite(rh) && std::isfinite(rh2) ? std::max(0.0, (4.0 * (rh2 - 1.0) - (rh - 1.0)) / h) : 0.0;
+  // How far the radius exceeds what is allowed at dt, in log (<= 0: stable). Past the limit
+  // the radius grows about geometrically with dt, so in log dt this is nearly straight near
+  // its root and a secant finds it in a few steps; an infinite radius (a run went
+  // non-finite) is +inf.
+  auto excess = [&](double dt) {
+    ++out.evaluations;
+    const double r = radiusOf(runs, dt, o).radius;
+    return std::log(std::max(r, 1e-300)) - std::log(1.0 + o.radiusSlack + 2.0 * growth * dt);
+  };
+
+  // Bracket: double while stable, halve while unstable.
+  double lo = 0.0, hi = 0.0, glo = 0.0, ghi = 0.0;
+  const double first = excess(firstGuess);
+  if (first <= 0.0) {
+    lo = firstGuess;
+    glo = first;
+    while (hi == 0.0) {
+      if (lo >= o.largestFactor * firstGuess) {
+        out.dt = INFINITY;
+        out.steps = runs.steps();
+        return out;
+      }
+      const double g = excess(2.0 * lo);
+      if (g <= 0.0) {
+        lo *= 2.0;
+        glo = g;
+      } else {
+        hi = 2.0 * lo;
+        ghi = g;
+      }
+    }
+  } else {
+    hi = firstGuess;
+    ghi = first;
+    while (lo == 0.0) {
+      if (hi <= o.smallestFactor * firstGuess) {
+        out.dt = 0.0;
+        out.steps = runs.steps();
+        return out;
+      }
+      const double g = excess(0.5 * hi);
+      if (g <= 0.0) {
+        lo = 0.5 * hi;
+        glo = g;
+      } else {
+        hi *= 0.5;
+        ghi = g;
+      }
+    }
+  }
+
+  // Narrow the bracket to the tolerance: a secant step in log dt on the excess (Illinois: an
+  // end kept twice in a row counts half, so the other end moves too), kept a quarter of the
+  // tolerance inside the bracket so that every step shrinks it, and the geometric midpoint
+  // where the secant has nothing to go on (an infinite excess). About 4 radii instead of
+  // bisection's 9 (the 64 x 64 cloth: each radius is 33 runs).
+  int lastKept = 0;  // +1: the last step moved lo, -1: it moved hi
+  const double margin = 0.25 * std::log1p(o.tolerance);
+  while (hi / lo > 1.0 + o.tolerance) {
+    const double a = std::log(lo), b = std::log(hi);
+    double x = 0.5 * (a + b);
+    if (std::isfinite(ghi) && ghi > glo) x = a - glo * (b - a) / (ghi - glo);
+    x = std::clamp(x, a + margin, b - margin);
+    const double mid = std::exp(x);
+    const double g = excess(mid);
+    if (g <= 0.0) {
+      lo = mid;
+      glo = g;
+      if (lastKept == 1) ghi *= 0.5;
+      lastKept = 1;
+    } else {
+      hi = mid;
+      ghi = g;
+      if (lastKept == -1) glo *= 0.5;
+      lastKept = -1;
+    }
+  }
+  out.dt = lo;
+  out.steps = runs.steps();
+  return out;
+}
+
+double stepStableDt(Simulation& sim, const StepStabilityOptions& options) {
+  sim.reset();
+  double w = 0.0;
+  try {
+    w = lanczosEstimate(sim, sim.initialState()).maxAngularFrequency;
+  } catch (const std::exception&) {
+    w = 0.0;
+  }
+  if (!(w > 0.0) || !std::isfinite(w)) w = sim.angularFrequencyBound();
+  const double guess = w > 0.0 && std::isfinite(w) ? 2.0 / w : 1e-3;
+  return stepStabilityLimit(sim, guess, options).dt;
+}
+
+}  // namespace springlab
