@@ -37,6 +37,7 @@ namespace {
 struct Case {
   std::string scene;       // file in scenes/
   std::string integrator;  // registered name
+  double dt = 0.0;         // s; 0: the scene's (a method unstable there runs below its limit)
 };
 void PrintTo(const Case& c, std::ostream* os) { *os << c.scene << " with " << c.integrator; }
 
@@ -51,12 +52,13 @@ TEST_P(StepsAfterTheFirst, AllocateNothing) {
   LoadedScene scene = registry.loadScene(std::string(SPRINGLAB_SCENES_DIR) + "/" + GetParam().scene);
   Simulation& sim = *scene.sim;
   sim.setIntegrator(registry.makeIntegrator(GetParam().integrator));
+  const double dt = GetParam().dt > 0.0 ? GetParam().dt : scene.settings.dt;
   // The first steps size every buffer (and start OpenMP's threads).
-  for (int n = 0; n < 3; ++n) sim.operate(scene.settings.dt);
+  for (int n = 0; n < 3; ++n) sim.operate(dt);
 
   allocations = 0;
   counting = true;
-  for (int n = 0; n < 50; ++n) sim.operate(scene.settings.dt);
+  for (int n = 0; n < 50; ++n) sim.operate(dt);
   counting = false;
   EXPECT_EQ(allocations.load(), 0) << GetParam().scene << " with " << GetParam().integrator << ": "
                                    << allocations.load() << " allocations in 50 steps";
@@ -66,7 +68,8 @@ INSTANTIATE_TEST_SUITE_P(
     Scenes, StepsAfterTheFirst,
     ::testing::Values(Case{"rope.json", "symplectic_euler"}, Case{"rope.json", "velocity_verlet"},
                       Case{"mass_on_spring.json", "midpoint"}, Case{"rope.json", "rk4"},
-                      Case{"net_hanging.json", "symplectic_euler"}, Case{"net_hanging.json", "implicit_euler"},
+                      // Symplectic Euler on the fabric below its limit (0.29 ms; the scene's 8.3 ms blows up).
+                      Case{"net_hanging.json", "symplectic_euler", 1e-4}, Case{"net_hanging.json", "implicit_euler"},
                       Case{"net_hanging.json", "implicit_euler_blocks"}, Case{"net_flag.json", "implicit_euler"},
                       Case{"net_hanging.json", "xpbd"}, Case{"net_hanging.json", "projective_dynamics"},
                       Case{"softbody_ball.json", "symplectic_euler"}, Case{"softbody_ring_2d.json", "symplectic_euler"}),
