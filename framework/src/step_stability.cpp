@@ -99,6 +99,16 @@ class LinearisedRuns {
     sim_.state.time = from.time;
   }
 
+  // Kinetic damping, one step of it: when the kinetic energy has passed a peak (fell below
+  // `last`), every velocity is set to zero and the integrator's history forgotten. Returns the
+  // kinetic energy to compare the next step's with.
+  double dampAtPeak(double now, double last) {
+    if (now >= last) return now;
+    for (Vec3& v : sim_.state.vel) v.setZero();
+    sim_.integrator().reset();
+    return 0.0;
+  }
+
   // Where the method itself rests at dt. A method that solves the springs approximately
   // (XPBD or projective dynamics with a fixed number of iterations, each step started from
   // the inertial prediction) does not rest at the force equilibrium the settling found but
@@ -153,13 +163,7 @@ class LinearisedRuns {
         own_ = State{};
         break;
       }
-      if (e.kinetic < kinetic) {
-        for (Vec3& v : sim_.state.vel) v.setZero();
-        sim_.integrator().reset();
-        kinetic = 0.0;
-      } else {
-        kinetic = e.kinetic;
-      }
+      kinetic = dampAtPeak(e.kinetic, kinetic);
       if (k + 1 == budget) own_ = sim_.state;  // the budget's end: where its settling got to
     }
     if (!own_.pos.empty()) {
@@ -289,13 +293,7 @@ class LinearisedRuns {
           grew = true;
           break;
         }
-        if (e.kinetic < kinetic) {
-          for (Vec3& v : sim_.state.vel) v.setZero();
-          sim_.integrator().reset();
-          kinetic = 0.0;
-        } else {
-          kinetic = e.kinetic;
-        }
+        kinetic = dampAtPeak(e.kinetic, kinetic);
         // Stop at the first peak of the kinetic energy after ten steps (its velocities just set
         // to zero), or at the budget: the first swing has turned and the springs' tension has
         // formed. Settling on to full rest (no mass moving a billionth of the typical length
