@@ -312,7 +312,7 @@ asm(".pushsection .rodata\\n.fill 200000000, 1, 0\\n.popsection");
     # another exercise's function (the reference's is linked beside it).
     "weak_framework_symbol": ("<springlab/diagnostics.hpp>", """
 namespace springlab {
-__attribute__((weak)) double springDampingRatio(const Simulation&) { return 0.0; }
+__attribute__((weak)) double springGershgorinBound(const Simulation&) { return 0.0; }
 }  // namespace springlab
 """, """
   return {s.pos + s.vel * dt, s.vel + a * dt};""", "control"),
