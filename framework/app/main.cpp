@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <system_error>
 
 #include <springlab/energy_source.hpp>
@@ -65,29 +66,35 @@ int runSim(const Registry& registry, const SimOptions& o) {
 
   // Step, saving every saveEvery-th frame (and the first and the last). The output's folder
   // is made when missing (--out out/rope.csv); a folder that cannot be made is reported by the
-  // recorder as an output that cannot be written.
-  if (const std::filesystem::path folder = std::filesystem::path(o.out).parent_path(); !folder.empty()) {
-    std::error_code ignored;
-    std::filesystem::create_directories(folder, ignored);
+  // recorder as an output that cannot be written. Without --out nothing is written: the run
+  // prints its summary only (the handouts' "run it and read the energy" commands).
+  std::optional<Recorder> recorder;
+  if (!o.out.empty()) {
+    if (const std::filesystem::path folder = std::filesystem::path(o.out).parent_path(); !folder.empty()) {
+      std::error_code ignored;
+      std::filesystem::create_directories(folder, ignored);
+    }
+    recorder.emplace(o.out, scene.settings, sim);
+    recorder->record(sim);
   }
-  Recorder recorder(o.out, scene.settings, sim);
-  recorder.record(sim);
   std::string status = "ok";
   const auto start = std::chrono::steady_clock::now();
   long step = 0;
   try {
     for (step = 1; step <= o.steps; ++step) {
       sim.operate(dt);
-      if (step % o.saveEvery == 0 || step == o.steps) recorder.record(sim);
+      if (recorder && (step % o.saveEvery == 0 || step == o.steps)) recorder->record(sim);
     }
   } catch (const BlowUp& e) {
-    recorder.record(sim);
-    recorder.close(e.what());
+    if (recorder) {
+      recorder->record(sim);
+      recorder->close(e.what());
+    }
     std::cerr << "springlab sim: " << e.what() << "\n";
     return 4;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  recorder.close(status);
+  if (recorder) recorder->close(status);
 
   // A one-line summary a student can compare between runs.
   const Energies e = sim.energies();
@@ -100,7 +107,7 @@ int runSim(const Registry& registry, const SimOptions& o) {
   for (const Observable& ob : sim.observables()) {
     std::cout << " " << ob.name << " = " << ob.value << (ob.unit.empty() ? "" : " ") << ob.unit << ";";
   }
-  std::cout << " wrote " << o.out << "\n";
+  std::cout << (o.out.empty() ? std::string(" nothing written (no --out)") : " wrote " + o.out) << "\n";
   if (o.profile) printProfile(sim, o.steps);
   // A run that did not blow up can still be wrong: a force that feeds energy in (a wind with
   // its sign turned) is named.
@@ -124,7 +131,7 @@ int main(int argc, char** argv) {
   simCmd->add_option("--steps", sim.steps, "number of steps")->required()->check(CLI::PositiveNumber);
   simCmd->add_option("--dt", sim.dt, "step in s (default: the scene's)")->check(CLI::PositiveNumber);
   simCmd->add_option("--integrator", sim.integrator, "integrator name (default: the scene's)");
-  simCmd->add_option("--out", sim.out, "output file, .json or .csv")->required();
+  simCmd->add_option("--out", sim.out, "output file, .json or .csv (default: write nothing, print the summary)");
   simCmd->add_option("--save-every", sim.saveEvery, "save every K-th step (default 1)")->check(CLI::PositiveNumber);
   simCmd->add_flag("--no-blowup-check", sim.noBlowUpCheck, "keep stepping when the run blows up");
   simCmd->add_flag("--profile", sim.profile, "print where a step's time goes (forces, integration, collisions, ...)");

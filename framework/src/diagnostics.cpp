@@ -212,8 +212,8 @@ bool BlowUpCheck::beyondLimitOrMeasured(Simulation& sim, double dt) {
   if (energySwing_ >= 0.0) return true;
   if (dt != limitDt_) {
     limitDt_ = dt;
-    const double limit = exactLimit(sim);
-    beyondLimit_ = !(dt <= limit);  // NaN (not computable) counts as beyond
+    limit_ = exactLimit(sim);
+    beyondLimit_ = !(dt <= limit_);  // NaN (not computable) counts as beyond
   }
   return beyondLimit_;
 }
@@ -302,9 +302,14 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     }
   }
 
-  // Name the likely cause: dt against the exact limit of the step that runs.
+  // Name the likely cause: dt against the exact limit of the step that runs (computed once
+  // per dt: the passivity detector may have needed it already). A study's trial leaves it out.
+  if (!explainCause_) {
+    msg << "The likely cause is not computed here (a study's trial; `springlab sim` with this dt names it).";
+    throw BlowUp(msg.str());
+  }
   const std::string name = integrator.name();
-  const double limit = exactLimit(sim);
+  const double limit = dt == limitDt_ ? limit_ : exactLimit(sim);
   if (std::isnan(limit)) {
     msg << "The stability limit of " << name << " on this scene could not be computed; try a smaller dt.";
   } else if (std::isinf(limit)) {

@@ -444,6 +444,17 @@ class LinearisedRuns {
 // the step all but removes, whose eigenvalue is near 0 and cannot be the largest).
 double ritzRadius(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
   if (X.cols() == 0) return 0.0;
+  // A square X of full rank (the whole Jacobian, no coordinate held): the map is Y X^-1,
+  // whose eigenvalues are those of X^-1 Y; one QR instead of the Gram matrix's eigenvectors
+  // (a third of the 80-mass rope's prediction).
+  if (X.rows() == X.cols()) {
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
+    qr.setThreshold(1e-7);
+    if (qr.rank() == X.cols()) {
+      const Eigen::EigenSolver<Eigen::MatrixXd> eig(qr.solve(Y), false);
+      return eig.eigenvalues().cwiseAbs().maxCoeff();
+    }
+  }
   const Eigen::MatrixXd G = X.transpose() * X;
   const Eigen::MatrixXd H = X.transpose() * Y;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(G);
@@ -456,6 +467,21 @@ double ritzRadius(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
   const Eigen::MatrixXd B =
       gram.eigenvectors().rightCols(rank) * l.tail(rank).cwiseSqrt().cwiseInverse().asDiagonal();
   const Eigen::MatrixXd A = B.transpose() * H * B;
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, false);
+  return eig.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// ritzRadius for X whose columns lie along coordinate axes: column l is x_l times axis
+// axes[l] (the whole Jacobian of a step without history, one coordinate per run). The
+// orthonormal basis is those axes, so the map there is A(k, l) = Y(axes[k], l) / x_l: no
+// Gram matrix, no QR, only the eigenvalues.
+double axisRitzRadius(const std::vector<Eigen::Index>& axes, const Eigen::VectorXd& x, const Eigen::MatrixXd& Y) {
+  const Eigen::Index m = static_cast<Eigen::Index>(axes.size());
+  if (m == 0) return 0.0;
+  Eigen::MatrixXd A(m, m);
+  for (Eigen::Index l = 0; l < m; ++l) {
+    for (Eigen::Index k = 0; k < m; ++k) A(k, l) = Y(axes[static_cast<std::size_t>(k)], l) / x[l];
+  }
   const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, false);
   return eig.eigenvalues().cwiseAbs().maxCoeff();
 }
@@ -524,6 +550,10 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   const int last = oneStep ? 0 : 1;
   Eigen::MatrixXd X(n, U.cols()), Y(n, U.cols());
   Eigen::Index kept = 0;
+  // The whole Jacobian of a step without history: each X column lies along its coordinate.
+  const bool alongAxes = dense && oneStep;
+  std::vector<Eigen::Index> axes;
+  Eigen::VectorXd axisLength(U.cols());
   for (Eigen::Index j = 0; j < U.cols(); ++j) {
     if (dense && !findHeld && runs.held[static_cast<std::size_t>(j)]) continue;
     const Eigen::VectorXd u = U.col(j) / U.col(j).cwiseAbs().maxCoeff();
@@ -544,9 +574,14 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
     }
     X.col(kept) = oneStep ? Eigen::VectorXd(u.cwiseProduct(scale)) : Eigen::VectorXd(moved.col(0) - base.col(0));
     Y.col(kept) = y;
+    if (alongAxes) {
+      axes.push_back(j);
+      axisLength[kept] = X(j, kept);
+    }
     ++kept;
   }
-  out.radius = ritzRadius(X.leftCols(kept), Y.leftCols(kept));
+  out.radius = alongAxes ? axisRitzRadius(axes, axisLength.head(kept), Y.leftCols(kept))
+                         : ritzRadius(X.leftCols(kept), Y.leftCols(kept));
   out.steps = runs.steps() - before;
   return out;
 }

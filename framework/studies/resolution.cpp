@@ -88,6 +88,7 @@ ResolutionStudy resolutionStudy(const Registry& registry, const SceneDocument& s
     const long per = stepsPerSample(interval, dt);
     RunSpec spec{doc, study.integrator, interval / static_cast<double>(per), per, o.samples};
     spec.keepPositions = false;
+    spec.explainBlowUp = false;  // a blow-up is charted, its message is not
     if (o.runProgress) work.push_back(runWork(registry, spec));
     specs.push_back(spec);
     study.rows.push_back({});
@@ -183,6 +184,7 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
   auto referenceAt = [&](int level) -> std::optional<std::vector<double>> {
     RunSpec spec{model, "rk4", interval / static_cast<double>(per(level)), per(level), o.samples};
     spec.keepPositions = false;
+    spec.explainBlowUp = false;  // a reference that blows up is replaced by the next halving
     progress.plan(1, runWork(registry, spec));
     const RunResult run = runScene(registry, spec);
     std::ostringstream what;
@@ -252,6 +254,7 @@ Advice advise(const Registry& registry, const SceneDocument& scene, const Advise
     for (int l = start; l < first + o.levels; ++l) {
       RunSpec spec{model, names[i], interval / static_cast<double>(per(l)), per(l), o.samples};
       spec.keepPositions = false;
+      spec.explainBlowUp = false;  // a blow-up is charted, its message is not
       RunResult run;
       try {
         run = runScene(registry, spec);

@@ -62,6 +62,7 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   sim.setIntegrator(registry.makeIntegrator(spec.integrator));
   scaleSprings(sim, spec.stiffnessScale);
   sim.setBlowUpCheck(true);
+  sim.setBlowUpExplanation(spec.explainBlowUp);
   if (spec.swingDt > 0.0) sim.setEnergySwing(energySwing(registry, spec, spec.swingDt));
 
   RunResult out;

@@ -29,6 +29,7 @@ std::optional<bool> survives(const Registry& registry, const SceneDocument& scen
   spec.keepPositions = false;
   spec.stiffnessScale = stiffnessScale;
   spec.swingDt = swingDt;
+  spec.explainBlowUp = false;  // the bisection needs the verdict only
   return runScene(registry, spec).stable;
 }
 

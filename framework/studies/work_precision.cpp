@@ -48,6 +48,7 @@ WorkPrecision workPrecision(const Registry& registry, const SceneDocument& scene
     const Task& task = tasks[t];
     RunSpec spec{scene, task.integrator, interval / static_cast<double>(stepsPerSample(task.level)),
                  stepsPerSample(task.level), o.samples};
+    spec.explainBlowUp = false;  // a blow-up is charted, its message is not
     WorkPrecisionPoint& p = points[t];
     p.integrator = task.integrator;
     p.dt = spec.dt;

@@ -16,8 +16,8 @@ student, reference, scenes = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
 failures = []
 
 
-def run(app, *args):
-    return subprocess.run([app, *args], capture_output=True, text=True, timeout=120)
+def run(app, *args, cwd=None):
+    return subprocess.run([app, *args], capture_output=True, text=True, timeout=120, cwd=cwd)
 
 
 def expect(name, proc, code, *needles):
@@ -66,6 +66,14 @@ with tempfile.TemporaryDirectory() as tmp:
     frames = json.loads(pathlib.Path(out).read_text())["frames"]
     if len(frames) != 101:
         failures.append(f"good run: {len(frames)} frames written, expected 101")
+    # Without --out a run writes nothing and still prints its summary (the handouts' commands).
+    before = sorted(tmp.iterdir())
+    expect("run without --out", run(reference, "sim", str(scenes / "rope.json"), "--steps", "100", cwd=tmp), 0,
+           "steps/s", "total energy", "nothing written")
+    if sorted(tmp.iterdir()) != before:
+        failures.append("run without --out: wrote a file")
+    expect("blow-up without --out", run(reference, "sim", str(scenes / "rope.json"), "--steps", "1000", "--dt", "0.01"),
+           4, "blew up")
     expect("blow-up", run(reference, "sim", str(scenes / "rope.json"), "--steps", "1000", "--dt", "0.01", "--out", out),
            4, "blew up", "is stable only below dt =")
     expect("skeleton", run(student, "sim", str(scenes / "rope.json"), "--steps", "10", "--out", out), 3,

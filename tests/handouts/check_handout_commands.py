@@ -45,6 +45,8 @@ EXPECTED_EXIT = [
      "section 5: explicit Euler blows up on the thesis' cloth at dt = 1/60 s (exit 4, blow-up)"),
     (r"^\./springlab sim scenes/softbody_ball\.json --integrator explicit_euler --dt 0\.001 --steps 3000", 4,
      "question 6 of handout 03: explicit Euler blows up in the ball's second landing (exit 4, blow-up)"),
+    (r"^\./springlab sim scenes/rope\.json --dt 0\.0024 --steps 5000", 4,
+     "section 5 of handout 01: symplectic Euler past the rope's limit, stopped by passivity (exit 4)"),
     (r"^\./springlab run rope --integrator explicit_euler --dt 0\.0005", 4,
      "section 5: explicit Euler blows up on the rope at dt = 0.5 ms; the headless run says so (exit 4)"),
 ]

@@ -1,6 +1,7 @@
 #pragma once
 // Diagnostics every system provides: energies, momentum, the largest angular frequency and
 // the blow-up check that stops a run with a message naming the likely cause.
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -91,6 +92,10 @@ class BlowUpCheck {
   // The integrator's own energy swing on this scene (J: the largest rise of the total energy
   // above its start in a short run at half the stability limit); negative: not measured.
   void setEnergySwing(double joules) { energySwing_ = joules; }
+  // Whether the message computes the exact limit of the step to name the likely cause (on by
+  // default). A study's trials need only the verdict: the limit costs up to seconds per
+  // blow-up (an 80-mass rope: 10 s), and a chart meets dozens of them.
+  void setExplainCause(bool explain) { explainCause_ = explain; }
   // The rise of a passive scene's total energy above its ceiling that counts as a blow-up (J).
   double passivityAllowance() const;
 
@@ -110,6 +115,8 @@ class BlowUpCheck {
   bool beyondLimitOrMeasured(Simulation& sim, double dt);
   double limitDt_ = -1.0;    // s, the dt beyondLimit_ was computed for
   bool beyondLimit_ = true;
+  double limit_ = NAN;       // s, the exact limit computed at limitDt_ (reused by the message)
+  bool explainCause_ = true;
   // The state at the last check that passed (or at arm()): where the forces are evaluated
   // again when the state turns non-finite.
   State last_;

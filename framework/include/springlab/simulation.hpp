@@ -137,6 +137,9 @@ class Simulation {
   // The integrator's energy swing on this scene for the passivity detector
   // (BlowUpCheck::setEnergySwing; studies measure it at half the stability limit).
   void setEnergySwing(double joules) { blowUpCheck_.setEnergySwing(joules); }
+  // Whether a blow-up's message names the likely cause from the step's exact limit
+  // (BlowUpCheck::setExplainCause; studies' trials turn it off, they need only the verdict).
+  void setBlowUpExplanation(bool explain) { blowUpCheck_.setExplainCause(explain); }
 
   // ---- diagnostics --------------------------------------------------------------------
   Energies energies() const;
