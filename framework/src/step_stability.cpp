@@ -53,7 +53,7 @@ Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed,
 class LinearisedRuns {
  public:
   LinearisedRuns(Simulation& sim, const StepStabilityOptions& o)
-      : sim_(sim), dofs_(freeCoordinates(sim)), solverTolerance_(sim.solver.tolerance) {
+      : sim_(sim), dofs_(freeCoordinates(sim)), solverTolerance_(sim.solver.tolerance), cancelled_(o.cancelled) {
     // An implicit step's linear solve stops at a residual relative to the whole right-hand
     // side: an error of that size, not proportional to the perturbation, would swamp the
     // finite differences. The linearised step is the step with its system solved exactly (a
@@ -70,7 +70,14 @@ class LinearisedRuns {
     // RK4's limit at its start is 0.077 s, the runs' and the closed form's at rest 0.283 s).
     // Scenes that never settle (wind, a moving anchor) are linearised where the settling
     // budget leaves them, a state of their ordinary motion.
-    if (o.settle) base_ = settledState(o);
+    if (o.settle) {
+      try {
+        base_ = settledState(o);
+      } catch (const StepStabilityCancelled&) {
+        sim_.solver.tolerance = solverTolerance_;  // no destructor runs for a constructor that throws
+        throw;
+      }
+    }
     if (!base_.pos.empty()) frequency_ = std::max(frequency_, stiffestFrequency(base_));
     // Finite-difference steps relative to the state's own scale: a perturbation below the
     // round-off of the coordinates (a scene far from the origin, a large velocity) would
@@ -145,7 +152,12 @@ class LinearisedRuns {
     const long budget = std::clamp<long>(o.settleEvaluations / std::max<long>(1, static_cast<long>(dofs_.size())),
                                          100, o.settleSteps);
     double kinetic = 0.0;
+    bool stopped = false;
     for (long k = 0; k < budget; ++k) {
+      if (k % 64 == 0 && isCancelled()) {
+        stopped = true;
+        break;
+      }
       const State before = sim_.state;
       try {
         sim_.operate(dt);
@@ -172,6 +184,7 @@ class LinearisedRuns {
     sim_.setBlowUpCheck(checked);
     sim_.reset();
     sim_.stats = stats;
+    if (stopped) throw StepStabilityCancelled();
   }
 
   ~LinearisedRuns() {
@@ -182,6 +195,7 @@ class LinearisedRuns {
   LinearisedRuns& operator=(const LinearisedRuns&) = delete;
 
   int size() const { return 2 * static_cast<int>(dofs_.size()); }
+  bool isCancelled() const { return cancelled_ && cancelled_(); }
   double maxAngularFrequency() const { return frequency_; }
   int steps() const { return steps_; }
 
@@ -203,6 +217,7 @@ class LinearisedRuns {
 
   // Steps from the current state (the integrator's history forgotten), as run() records them.
   Eigen::MatrixXd runFromCurrent(double dt, int count = 0) {
+    if (isCancelled()) throw StepStabilityCancelled();
     State& s = sim_.state;
     const int n = static_cast<int>(dofs_.size());
     sim_.integrator().reset();
@@ -275,13 +290,18 @@ class LinearisedRuns {
     const long budget = std::clamp<long>(o.settleEvaluations / std::max<long>(1, static_cast<long>(dofs_.size())),
                                          100, o.settleSteps);
     State settled;
-    for (double dt = 0.5 / frequency_, tries = 0; tries < 4 && settled.pos.empty(); dt *= 0.5, ++tries) {
+    bool stopped = false;
+    for (double dt = 0.5 / frequency_, tries = 0; tries < 4 && settled.pos.empty() && !stopped; dt *= 0.5, ++tries) {
       sim_.reset();
       const double start = sim_.energies().total();
       const double scale = sim_.blowUpEnergyScale();
       double kinetic = 0.0;
       bool grew = false;
       for (long k = 0; k < budget; ++k) {
+        if (k % 64 == 0 && isCancelled()) {
+          stopped = true;
+          break;
+        }
         try {
           sim_.simulate(dt);
         } catch (const std::exception&) {
@@ -303,12 +323,13 @@ class LinearisedRuns {
         for (const Dof& d : dofs_) fastest = std::max(fastest, std::abs(sim_.state.vel[d.mass][d.axis]));
         if (k > 10 && fastest * dt < 1e-9 * length_ && kinetic == 0.0) break;
       }
-      if (!grew) settled = sim_.state;
+      if (!grew && !stopped) settled = sim_.state;
     }
     sim_.exchangeIntegrator(std::move(own));
     sim_.setBlowUpCheck(checked);
     sim_.reset();
     sim_.stats = stats;
+    if (stopped) throw StepStabilityCancelled();
     if (!settled.pos.empty()) {
       // The settled state at rest: only the free masses' motion is relaxed away.
       for (Vec3& v : settled.vel) v.setZero();
@@ -424,6 +445,7 @@ class LinearisedRuns {
   double positionStep_ = 1e-6;  // m, the finite differences' perturbation of a position
   double velocityStep_ = 1e-6;  // m/s, of a velocity
   double solverTolerance_;  // the scene's own, put back when the runs end
+  std::function<bool()> cancelled_;  // StepStabilityOptions::cancelled
   State base_;              // where the map is linearised: the settled state (empty: the initial one)
   State own_;               // the method's own rest at ownDt_ where it is not base_ (empty: base_)
   double ownDt_ = -1.0;     // s, the dt own_ was settled for
