@@ -99,5 +99,25 @@ TEST(StepStability, LeavesTheSceneAtItsStart) {
   EXPECT_EQ(sim.stats.steps, 0);
 }
 
+// The viewer's worker cancels a computation when the method or a parameter changes: the
+// computation stops at its next run of the scene (the n-th question) and leaves the scene as
+// a finished one does, its solver tolerance and blow-up check as they were.
+TEST(StepStability, CancelledComputationStopsAndLeavesTheSceneAtItsStart) {
+  for (int askedBeforeCancel : {0, 5, 200}) {
+    AnchoredOscillators sim(2, 1.0, 100.0, 2.0);
+    const State start = sim.state;
+    const double tolerance = sim.solver.tolerance;
+    int asked = 0;
+    StepStabilityOptions o;
+    o.cancelled = [&] { return ++asked > askedBeforeCancel; };
+    EXPECT_THROW(stepStableDt(sim, o), StepStabilityCancelled) << "cancelled after " << askedBeforeCancel;
+    EXPECT_EQ(asked, askedBeforeCancel + 1) << "asked again after saying stop";
+    EXPECT_EQ(sim.state.pos, start.pos);
+    EXPECT_EQ(sim.state.vel, start.vel);
+    EXPECT_EQ(sim.solver.tolerance, tolerance);
+    EXPECT_TRUE(sim.blowUpCheckEnabled());
+  }
+}
+
 }  // namespace
 }  // namespace springlab
