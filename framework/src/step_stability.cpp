@@ -627,7 +627,11 @@ StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const 
   // grow by up to 1 + 2 g dt: the margin takes the method's own error on the growing mode
   // (symplectic Euler's r - 1 is 15.2 dt to 15.3 dt there), and costs little, since past the
   // limit the radius climbs steeply (3.8 at twice symplectic Euler's limit on that cloth).
-  const double h = firstGuess / 8.0;
+  // The probes are small (1/32 of the first guess): the method's next error term, h^3 in
+  // r - 1, leaks into g as h^2, and at 1/8 explicit Euler's own 1 + y^2 / 2 - y^4 / 8 on an
+  // undamped spring read as g = 0.015 /s, whose allowance 2 g dt hid its growth up to a
+  // "limit" of 0.6 ms where it has none.
+  const double h = firstGuess / 32.0;
   const double rh = radiusOf(runs, h, o).radius, rh2 = radiusOf(runs, 0.5 * h, o).radius;
   out.evaluations += 2;
   const double growth = std::isfinite(rh) && std::isfinite(rh2) ? std::max(0.0, (4.0 * (rh2 - 1.0) - (rh - 1.0)) / h) : 0.0;
@@ -707,6 +711,20 @@ StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const 
       if (lastKept == -1) glo *= 0.5;
       lastKept = -1;
     }
+  }
+  // Unstable at every dt, the slack alone setting a "limit": a radius above 1 by a power of
+  // dt on an undamped mode (explicit Euler's 1 + w^2 dt^2 / 2, the midpoint rule's
+  // 1 + w^4 dt^4 / 8) meets 1 + slack at some small dt and exceeds 1 below it too. Below a
+  // genuine limit the excess is negative (damping) or zero up to the finite differences'
+  // noise (a symplectic method's undamped modes, about 1e-8). So at half the limit found an
+  // excess still above slack / 32 (explicit Euler there: slack / 4, the midpoint rule
+  // slack / 16) says no dt is stable. Only a limit far below the first guess (2 / w_max) is
+  // asked: that is where such a "limit" lands.
+  if (lo < 0.25 * firstGuess) {
+    ++out.evaluations;
+    const double half = 0.5 * lo;
+    const double r = radiusOf(runs, half, o).radius;
+    if (r - 1.0 - 2.0 * growth * half > o.radiusSlack / 32.0) lo = 0.0;
   }
   out.dt = lo;
   out.steps = runs.steps();
