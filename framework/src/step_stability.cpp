@@ -203,6 +203,14 @@ class LinearisedRuns {
   // initial state plus epsilon times `direction` (dimensionless, largest entry 1; empty: none).
   // Stops early (fewer columns) when the state turns non-finite.
   Eigen::MatrixXd run(double dt, int count, const Eigen::VectorXd& direction) {
+    Eigen::MatrixXd out;
+    runInto(dt, count, direction, out);
+    return out;
+  }
+
+  // run() into `out`, whose storage is kept from one run to the next (the 64 x 64 cloth's
+  // snapshots are 0.4 MB: a fresh allocation per run cost page faults, a tenth of its time).
+  void runInto(double dt, int count, const Eigen::VectorXd& direction, Eigen::MatrixXd& out) {
     restore();
     State& s = sim_.state;
     const int n = static_cast<int>(dofs_.size());
@@ -212,18 +220,23 @@ class LinearisedRuns {
         s.vel[dofs_[j].mass][dofs_[j].axis] += velocityStep_ * direction[n + j];
       }
     }
-    return runFromCurrent(dt, count);
+    runFromCurrentInto(dt, count, out);
   }
 
   // Steps from the current state (the integrator's history forgotten), as run() records them.
   Eigen::MatrixXd runFromCurrent(double dt, int count = 0) {
+    Eigen::MatrixXd out;
+    runFromCurrentInto(dt, count, out);
+    return out;
+  }
+  void runFromCurrentInto(double dt, int count, Eigen::MatrixXd& out) {
     if (isCancelled()) throw StepStabilityCancelled();
     State& s = sim_.state;
     const int n = static_cast<int>(dofs_.size());
     sim_.integrator().reset();
     const bool checked = sim_.blowUpCheckEnabled();
     sim_.setBlowUpCheck(false);
-    Eigen::MatrixXd out(size(), count + 1);
+    out.resize(size(), count + 1);
     int columns = 0;
     try {
       for (int k = 0; k <= count; ++k) {
@@ -247,7 +260,7 @@ class LinearisedRuns {
     // destructor resets it): a reset per run re-arms the blow-up check, an energy sum over
     // every mass, 4 % of the 64 x 64 cloth's prediction.
     sim_.setBlowUpCheck(checked);
-    return out.leftCols(columns);
+    if (columns < count + 1) out.conservativeResize(Eigen::NoChange, columns);
   }
 
   // The perturbations in the recorded (dimensionless) coordinates: positions over the typical
@@ -457,6 +470,11 @@ class LinearisedRuns {
   // The coordinates a contact holds at the settled state (found once, by radiusOf's first
   // dense probe; empty until then).
   std::vector<char> held;
+  // radiusOf's matrices, kept from one radius to the next.
+  struct Scratch {
+    Eigen::MatrixXd base, moved, opposite, X, Y;
+    Eigen::VectorXd u;
+  } scratch;
 };
 
 // The largest |eigenvalue| of the map that takes the columns of X to those of Y, on X's
@@ -464,7 +482,7 @@ class LinearisedRuns {
 // orthonormal basis X W L^-1/2 is L^-1/2 W^T (X^T Y) W L^-1/2. Directions with
 // sqrt(L) below 1e-7 of the largest are dropped: there the differences are round-off (a mode
 // the step all but removes, whose eigenvalue is near 0 and cannot be the largest).
-double ritzRadius(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+double ritzRadius(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::MatrixXd>& Y) {
   if (X.cols() == 0) return 0.0;
   // A square X of full rank (the whole Jacobian, no coordinate held): the map is Y X^-1,
   // whose eigenvalues are those of X^-1 Y; one QR instead of the Gram matrix's eigenvectors
@@ -497,7 +515,8 @@ double ritzRadius(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
 // axes[l] (the whole Jacobian of a step without history, one coordinate per run). The
 // orthonormal basis is those axes, so the map there is A(k, l) = Y(axes[k], l) / x_l: no
 // Gram matrix, no QR, only the eigenvalues.
-double axisRitzRadius(const std::vector<Eigen::Index>& axes, const Eigen::VectorXd& x, const Eigen::MatrixXd& Y) {
+double axisRitzRadius(const std::vector<Eigen::Index>& axes, const Eigen::Ref<const Eigen::VectorXd>& x,
+                      const Eigen::Ref<const Eigen::MatrixXd>& Y) {
   const Eigen::Index m = static_cast<Eigen::Index>(axes.size());
   if (m == 0) return 0.0;
   Eigen::MatrixXd A(m, m);
@@ -556,9 +575,14 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   // Every coordinate (a small system: the whole Jacobian) or the modal directions; for each,
   // its run against the unperturbed one.
   runs.settleAt(dt, o);
-  const Eigen::MatrixXd U = n <= o.denseBelow ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n)) : runs.directions(o.modes);
+  Eigen::MatrixXd identity;
+  if (n <= o.denseBelow) identity.setIdentity(n, n);
+  const Eigen::MatrixXd& U = n <= o.denseBelow ? identity : runs.directions(o.modes);
   const bool oneStep = runs.historyFree(dt);
-  const Eigen::MatrixXd base = runs.run(dt, oneStep ? 0 : 1, {});
+  // Buffers kept between radii (runs.scratch): no allocation per run.
+  LinearisedRuns::Scratch& b = runs.scratch;
+  runs.runInto(dt, oneStep ? 0 : 1, {}, b.base);
+  const Eigen::MatrixXd& base = b.base;
   const Eigen::VectorXd scale = runs.perturbationScale();
   // The first dense probe takes both sides of every coordinate. Where the two disagree the
   // step is not differentiable there: a mass resting on a collider, whose push inwards is
@@ -570,7 +594,10 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   const bool findHeld = dense && runs.held.empty();
   if (findHeld) runs.held.assign(static_cast<std::size_t>(n), 0);
   const int last = oneStep ? 0 : 1;
-  Eigen::MatrixXd X(n, U.cols()), Y(n, U.cols());
+  Eigen::MatrixXd& X = b.X;
+  Eigen::MatrixXd& Y = b.Y;
+  X.resize(n, U.cols());
+  Y.resize(n, U.cols());
   Eigen::Index kept = 0;
   // The whole Jacobian of a step without history: each X column lies along its coordinate.
   const bool alongAxes = dense && oneStep;
@@ -578,15 +605,19 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   Eigen::VectorXd axisLength(U.cols());
   for (Eigen::Index j = 0; j < U.cols(); ++j) {
     if (dense && !findHeld && runs.held[static_cast<std::size_t>(j)]) continue;
-    const Eigen::VectorXd u = U.col(j) / U.col(j).cwiseAbs().maxCoeff();
-    const Eigen::MatrixXd moved = runs.run(dt, last, u);
-    const Eigen::MatrixXd opposite = findHeld ? runs.run(dt, last, -u) : base;
+    b.u = U.col(j) / U.col(j).cwiseAbs().maxCoeff();
+    const Eigen::VectorXd& u = b.u;
+    runs.runInto(dt, last, u, b.moved);
+    if (findHeld) runs.runInto(dt, last, -u, b.opposite);
+    const Eigen::MatrixXd& moved = b.moved;
+    const Eigen::MatrixXd& opposite = findHeld ? b.opposite : base;
     if (moved.cols() < base.cols() || opposite.cols() < base.cols() || base.cols() < last + 1) {
       out.radius = INFINITY;
       out.steps = runs.steps() - before;
       return out;
     }
-    const Eigen::VectorXd y = moved.col(last) - base.col(last);
+    Y.col(kept) = moved.col(last) - base.col(last);
+    const auto y = Y.col(kept);
     if (findHeld) {
       const Eigen::VectorXd back = opposite.col(last) - base.col(last);
       if ((y + back).norm() > 0.1 * std::max(y.norm(), back.norm())) {
@@ -594,8 +625,11 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
         continue;
       }
     }
-    X.col(kept) = oneStep ? Eigen::VectorXd(u.cwiseProduct(scale)) : Eigen::VectorXd(moved.col(0) - base.col(0));
-    Y.col(kept) = y;
+    if (oneStep) {
+      X.col(kept) = u.cwiseProduct(scale);
+    } else {
+      X.col(kept) = moved.col(0) - base.col(0);
+    }
     if (alongAxes) {
       axes.push_back(j);
       axisLength[kept] = X(j, kept);
