@@ -755,6 +755,7 @@ void Viewer::draw(bool last) {
 
 void Viewer::requestStepLimit() {
   stepLimitStale_ = false;
+  scene_.sim->setKnownStepLimit(std::nullopt);
   // The copy: the scene file again, with the sliders' values and the method the viewer runs.
   std::unique_ptr<Simulation> copy;
   try {
@@ -813,7 +814,11 @@ void Viewer::drawGui(bool last) {
   if (sim && !missing_) {
     if (stepLimitStale_) requestStepLimit();
     if (last) stepLimit_.wait(kLastFrameWait);
-    if (const std::optional<double> limit = stepLimit_.limit()) stableDt = *limit;
+    if (const std::optional<double> limit = stepLimit_.limit()) {
+      stableDt = *limit;
+      // The blow-up message takes it from here instead of computing it on this thread.
+      if (sim->knownStepLimit() != limit) sim->setKnownStepLimit(limit);
+    }
   }
   if (stableDt >= 0.0 && control_.dt > stableDt) {
     std::ostringstream note;
