@@ -328,7 +328,9 @@ def stability(folder):
                 text = f"measured\n{m / p:.3g} x predicted"
             above = max(shown, p, u if 0 < u < inf else 0)
         else:
-            text = "predicted: no\nstable dt" + ("; none\nmeasured (arrow down)" if m == 0 else "")
+            # Unstable at every dt: a trial that survives grows too slowly to show within it.
+            text = "predicted: no\nstable dt" + ("; none\nmeasured (arrow down)" if m == 0 else
+                                                 f";\nsurvives its trial\nup to {m:.2g} s (slow\ngrowth unseen)")
             above = shown
         # Under the arrow up where no limit was found (it fills the room above); above the
         # arrow down where no stable dt was found.

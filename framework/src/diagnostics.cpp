@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "springlab/simulation.hpp"
@@ -190,8 +191,10 @@ bool anchorsMoved(const Simulation& sim, const State& last) {
 }
 
 // The exact stability limit of the step that runs, leaving the state and counters as the
-// blow-up left them; NaN when it cannot be computed.
+// blow-up left them; NaN when it cannot be computed. One already computed (the viewer's, on a
+// copy of the scene) is taken as it is.
 double exactLimit(Simulation& sim) {
+  if (const std::optional<double> known = sim.knownStepLimit()) return *known;
   const State blownUp = sim.state;
   const Stats stats = sim.stats;
   double limit = NAN;

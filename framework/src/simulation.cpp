@@ -72,6 +72,7 @@ void Simulation::forceJacobian(const State& s, ForceJacobian& J, std::string_vie
 void Simulation::setIntegrator(std::unique_ptr<Integrator> integrator) {
   if (!integrator) throw std::invalid_argument("Simulation::setIntegrator: null integrator");
   integrator_ = std::move(integrator);
+  knownStepLimit_.reset();  // it was the old method's
   const auto options = integratorOptions.find(integrator_->name());
   if (options != integratorOptions.end()) {
     for (const auto& [option, value] : options->second) integrator_->setOption(option, value);
@@ -170,6 +171,7 @@ void Simulation::editModel(const std::function<void(Simulation&)>& edit) {
     throw std::logic_error("Simulation::editModel: the edit changed the number of masses but not the state");
   }
   onModelEdited();
+  knownStepLimit_.reset();  // it was the old model's
   // The integrator's history (Verlet's previous positions) belongs to the old model, and
   // the edited model may hold more energy than the old one: neither is a blow-up.
   integrator_->reset();

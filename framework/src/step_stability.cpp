@@ -53,7 +53,7 @@ Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed,
 class LinearisedRuns {
  public:
   LinearisedRuns(Simulation& sim, const StepStabilityOptions& o)
-      : sim_(sim), dofs_(freeCoordinates(sim)), solverTolerance_(sim.solver.tolerance) {
+      : sim_(sim), dofs_(freeCoordinates(sim)), solverTolerance_(sim.solver.tolerance), cancelled_(o.cancelled) {
     // An implicit step's linear solve stops at a residual relative to the whole right-hand
     // side: an error of that size, not proportional to the perturbation, would swamp the
     // finite differences. The linearised step is the step with its system solved exactly (a
@@ -70,7 +70,14 @@ class LinearisedRuns {
     // RK4's limit at its start is 0.077 s, the runs' and the closed form's at rest 0.283 s).
     // Scenes that never settle (wind, a moving anchor) are linearised where the settling
     // budget leaves them, a state of their ordinary motion.
-    if (o.settle) base_ = settledState(o);
+    if (o.settle) {
+      try {
+        base_ = settledState(o);
+      } catch (const StepStabilityCancelled&) {
+        sim_.solver.tolerance = solverTolerance_;  // no destructor runs for a constructor that throws
+        throw;
+      }
+    }
     if (!base_.pos.empty()) frequency_ = std::max(frequency_, stiffestFrequency(base_));
     // Finite-difference steps relative to the state's own scale: a perturbation below the
     // round-off of the coordinates (a scene far from the origin, a large velocity) would
@@ -145,7 +152,12 @@ class LinearisedRuns {
     const long budget = std::clamp<long>(o.settleEvaluations / std::max<long>(1, static_cast<long>(dofs_.size())),
                                          100, o.settleSteps);
     double kinetic = 0.0;
+    bool stopped = false;
     for (long k = 0; k < budget; ++k) {
+      if (k % 64 == 0 && isCancelled()) {
+        stopped = true;
+        break;
+      }
       const State before = sim_.state;
       try {
         sim_.operate(dt);
@@ -172,6 +184,7 @@ class LinearisedRuns {
     sim_.setBlowUpCheck(checked);
     sim_.reset();
     sim_.stats = stats;
+    if (stopped) throw StepStabilityCancelled();
   }
 
   ~LinearisedRuns() {
@@ -182,6 +195,7 @@ class LinearisedRuns {
   LinearisedRuns& operator=(const LinearisedRuns&) = delete;
 
   int size() const { return 2 * static_cast<int>(dofs_.size()); }
+  bool isCancelled() const { return cancelled_ && cancelled_(); }
   double maxAngularFrequency() const { return frequency_; }
   int steps() const { return steps_; }
 
@@ -189,6 +203,14 @@ class LinearisedRuns {
   // initial state plus epsilon times `direction` (dimensionless, largest entry 1; empty: none).
   // Stops early (fewer columns) when the state turns non-finite.
   Eigen::MatrixXd run(double dt, int count, const Eigen::VectorXd& direction) {
+    Eigen::MatrixXd out;
+    runInto(dt, count, direction, out);
+    return out;
+  }
+
+  // run() into `out`, whose storage is kept from one run to the next (the 64 x 64 cloth's
+  // snapshots are 0.4 MB: a fresh allocation per run cost page faults, a tenth of its time).
+  void runInto(double dt, int count, const Eigen::VectorXd& direction, Eigen::MatrixXd& out) {
     restore();
     State& s = sim_.state;
     const int n = static_cast<int>(dofs_.size());
@@ -198,17 +220,23 @@ class LinearisedRuns {
         s.vel[dofs_[j].mass][dofs_[j].axis] += velocityStep_ * direction[n + j];
       }
     }
-    return runFromCurrent(dt, count);
+    runFromCurrentInto(dt, count, out);
   }
 
   // Steps from the current state (the integrator's history forgotten), as run() records them.
   Eigen::MatrixXd runFromCurrent(double dt, int count = 0) {
+    Eigen::MatrixXd out;
+    runFromCurrentInto(dt, count, out);
+    return out;
+  }
+  void runFromCurrentInto(double dt, int count, Eigen::MatrixXd& out) {
+    if (isCancelled()) throw StepStabilityCancelled();
     State& s = sim_.state;
     const int n = static_cast<int>(dofs_.size());
     sim_.integrator().reset();
     const bool checked = sim_.blowUpCheckEnabled();
     sim_.setBlowUpCheck(false);
-    Eigen::MatrixXd out(size(), count + 1);
+    out.resize(size(), count + 1);
     int columns = 0;
     try {
       for (int k = 0; k <= count; ++k) {
@@ -232,7 +260,7 @@ class LinearisedRuns {
     // destructor resets it): a reset per run re-arms the blow-up check, an energy sum over
     // every mass, 4 % of the 64 x 64 cloth's prediction.
     sim_.setBlowUpCheck(checked);
-    return out.leftCols(columns);
+    if (columns < count + 1) out.conservativeResize(Eigen::NoChange, columns);
   }
 
   // The perturbations in the recorded (dimensionless) coordinates: positions over the typical
@@ -275,13 +303,23 @@ class LinearisedRuns {
     const long budget = std::clamp<long>(o.settleEvaluations / std::max<long>(1, static_cast<long>(dofs_.size())),
                                          100, o.settleSteps);
     State settled;
-    for (double dt = 0.5 / frequency_, tries = 0; tries < 4 && settled.pos.empty(); dt *= 0.5, ++tries) {
+    bool stopped = false;
+    for (double dt = 0.5 / frequency_, tries = 0; tries < 4 && settled.pos.empty() && !stopped; dt *= 0.5, ++tries) {
       sim_.reset();
       const double start = sim_.energies().total();
-      const double scale = sim_.blowUpEnergyScale();
+      // Growth: a passive scene under kinetic damping only loses energy, up to symplectic
+      // Euler's own swing, so a rise of a hundredth of its energy scale is the step growing (the
+      // 64 x 64 cloth: 0.5 / w_max is 2.9 times its damped limit, and it gained 17 J in 100
+      // steps, below the scale of 1098 J that counted before). A scene that supplies energy
+      // (wind, a pump) may rise by the whole scale.
+      const double scale = sim_.blowUpEnergyScale() * (sim_.suppliesEnergy() ? 1.0 : 0.01);
       double kinetic = 0.0;
       bool grew = false;
       for (long k = 0; k < budget; ++k) {
+        if (k % 64 == 0 && isCancelled()) {
+          stopped = true;
+          break;
+        }
         try {
           sim_.simulate(dt);
         } catch (const std::exception&) {
@@ -303,12 +341,13 @@ class LinearisedRuns {
         for (const Dof& d : dofs_) fastest = std::max(fastest, std::abs(sim_.state.vel[d.mass][d.axis]));
         if (k > 10 && fastest * dt < 1e-9 * length_ && kinetic == 0.0) break;
       }
-      if (!grew) settled = sim_.state;
+      if (!grew && !stopped) settled = sim_.state;
     }
     sim_.exchangeIntegrator(std::move(own));
     sim_.setBlowUpCheck(checked);
     sim_.reset();
     sim_.stats = stats;
+    if (stopped) throw StepStabilityCancelled();
     if (!settled.pos.empty()) {
       // The settled state at rest: only the free masses' motion is relaxed away.
       for (Vec3& v : settled.vel) v.setZero();
@@ -424,6 +463,7 @@ class LinearisedRuns {
   double positionStep_ = 1e-6;  // m, the finite differences' perturbation of a position
   double velocityStep_ = 1e-6;  // m/s, of a velocity
   double solverTolerance_;  // the scene's own, put back when the runs end
+  std::function<bool()> cancelled_;  // StepStabilityOptions::cancelled
   State base_;              // where the map is linearised: the settled state (empty: the initial one)
   State own_;               // the method's own rest at ownDt_ where it is not base_ (empty: base_)
   double ownDt_ = -1.0;     // s, the dt own_ was settled for
@@ -435,6 +475,11 @@ class LinearisedRuns {
   // The coordinates a contact holds at the settled state (found once, by radiusOf's first
   // dense probe; empty until then).
   std::vector<char> held;
+  // radiusOf's matrices, kept from one radius to the next.
+  struct Scratch {
+    Eigen::MatrixXd base, moved, opposite, X, Y;
+    Eigen::VectorXd u;
+  } scratch;
 };
 
 // The largest |eigenvalue| of the map that takes the columns of X to those of Y, on X's
@@ -442,7 +487,7 @@ class LinearisedRuns {
 // orthonormal basis X W L^-1/2 is L^-1/2 W^T (X^T Y) W L^-1/2. Directions with
 // sqrt(L) below 1e-7 of the largest are dropped: there the differences are round-off (a mode
 // the step all but removes, whose eigenvalue is near 0 and cannot be the largest).
-double ritzRadius(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+double ritzRadius(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::MatrixXd>& Y) {
   if (X.cols() == 0) return 0.0;
   // A square X of full rank (the whole Jacobian, no coordinate held): the map is Y X^-1,
   // whose eigenvalues are those of X^-1 Y; one QR instead of the Gram matrix's eigenvectors
@@ -475,7 +520,8 @@ double ritzRadius(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
 // axes[l] (the whole Jacobian of a step without history, one coordinate per run). The
 // orthonormal basis is those axes, so the map there is A(k, l) = Y(axes[k], l) / x_l: no
 // Gram matrix, no QR, only the eigenvalues.
-double axisRitzRadius(const std::vector<Eigen::Index>& axes, const Eigen::VectorXd& x, const Eigen::MatrixXd& Y) {
+double axisRitzRadius(const std::vector<Eigen::Index>& axes, const Eigen::Ref<const Eigen::VectorXd>& x,
+                      const Eigen::Ref<const Eigen::MatrixXd>& Y) {
   const Eigen::Index m = static_cast<Eigen::Index>(axes.size());
   if (m == 0) return 0.0;
   Eigen::MatrixXd A(m, m);
@@ -534,9 +580,14 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   // Every coordinate (a small system: the whole Jacobian) or the modal directions; for each,
   // its run against the unperturbed one.
   runs.settleAt(dt, o);
-  const Eigen::MatrixXd U = n <= o.denseBelow ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n)) : runs.directions(o.modes);
+  Eigen::MatrixXd identity;
+  if (n <= o.denseBelow) identity.setIdentity(n, n);
+  const Eigen::MatrixXd& U = n <= o.denseBelow ? identity : runs.directions(o.modes);
   const bool oneStep = runs.historyFree(dt);
-  const Eigen::MatrixXd base = runs.run(dt, oneStep ? 0 : 1, {});
+  // Buffers kept between radii (runs.scratch): no allocation per run.
+  LinearisedRuns::Scratch& b = runs.scratch;
+  runs.runInto(dt, oneStep ? 0 : 1, {}, b.base);
+  const Eigen::MatrixXd& base = b.base;
   const Eigen::VectorXd scale = runs.perturbationScale();
   // The first dense probe takes both sides of every coordinate. Where the two disagree the
   // step is not differentiable there: a mass resting on a collider, whose push inwards is
@@ -548,7 +599,10 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   const bool findHeld = dense && runs.held.empty();
   if (findHeld) runs.held.assign(static_cast<std::size_t>(n), 0);
   const int last = oneStep ? 0 : 1;
-  Eigen::MatrixXd X(n, U.cols()), Y(n, U.cols());
+  Eigen::MatrixXd& X = b.X;
+  Eigen::MatrixXd& Y = b.Y;
+  X.resize(n, U.cols());
+  Y.resize(n, U.cols());
   Eigen::Index kept = 0;
   // The whole Jacobian of a step without history: each X column lies along its coordinate.
   const bool alongAxes = dense && oneStep;
@@ -556,15 +610,19 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   Eigen::VectorXd axisLength(U.cols());
   for (Eigen::Index j = 0; j < U.cols(); ++j) {
     if (dense && !findHeld && runs.held[static_cast<std::size_t>(j)]) continue;
-    const Eigen::VectorXd u = U.col(j) / U.col(j).cwiseAbs().maxCoeff();
-    const Eigen::MatrixXd moved = runs.run(dt, last, u);
-    const Eigen::MatrixXd opposite = findHeld ? runs.run(dt, last, -u) : base;
+    b.u = U.col(j) / U.col(j).cwiseAbs().maxCoeff();
+    const Eigen::VectorXd& u = b.u;
+    runs.runInto(dt, last, u, b.moved);
+    if (findHeld) runs.runInto(dt, last, -u, b.opposite);
+    const Eigen::MatrixXd& moved = b.moved;
+    const Eigen::MatrixXd& opposite = findHeld ? b.opposite : base;
     if (moved.cols() < base.cols() || opposite.cols() < base.cols() || base.cols() < last + 1) {
       out.radius = INFINITY;
       out.steps = runs.steps() - before;
       return out;
     }
-    const Eigen::VectorXd y = moved.col(last) - base.col(last);
+    Y.col(kept) = moved.col(last) - base.col(last);
+    const auto y = Y.col(kept);
     if (findHeld) {
       const Eigen::VectorXd back = opposite.col(last) - base.col(last);
       if ((y + back).norm() > 0.1 * std::max(y.norm(), back.norm())) {
@@ -572,8 +630,11 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
         continue;
       }
     }
-    X.col(kept) = oneStep ? Eigen::VectorXd(u.cwiseProduct(scale)) : Eigen::VectorXd(moved.col(0) - base.col(0));
-    Y.col(kept) = y;
+    if (oneStep) {
+      X.col(kept) = u.cwiseProduct(scale);
+    } else {
+      X.col(kept) = moved.col(0) - base.col(0);
+    }
     if (alongAxes) {
       axes.push_back(j);
       axisLength[kept] = X(j, kept);
@@ -605,7 +666,11 @@ StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const 
   // grow by up to 1 + 2 g dt: the margin takes the method's own error on the growing mode
   // (symplectic Euler's r - 1 is 15.2 dt to 15.3 dt there), and costs little, since past the
   // limit the radius climbs steeply (3.8 at twice symplectic Euler's limit on that cloth).
-  const double h = firstGuess / 8.0;
+  // The probes are small (1/32 of the first guess): the method's next error term, h^3 in
+  // r - 1, leaks into g as h^2, and at 1/8 explicit Euler's own 1 + y^2 / 2 - y^4 / 8 on an
+  // undamped spring read as g = 0.015 /s, whose allowance 2 g dt hid its growth up to a
+  // "limit" of 0.6 ms where it has none.
+  const double h = firstGuess / 32.0;
   const double rh = radiusOf(runs, h, o).radius, rh2 = radiusOf(runs, 0.5 * h, o).radius;
   out.evaluations += 2;
   const double growth = std::isfinite(rh) && std::isfinite(rh2) ? std::max(0.0, (4.0 * (rh2 - 1.0) - (rh - 1.0)) / h) : 0.0;
@@ -685,6 +750,20 @@ StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const 
       if (lastKept == -1) glo *= 0.5;
       lastKept = -1;
     }
+  }
+  // Unstable at every dt, the slack alone setting a "limit": a radius above 1 by a power of
+  // dt on an undamped mode (explicit Euler's 1 + w^2 dt^2 / 2, the midpoint rule's
+  // 1 + w^4 dt^4 / 8) meets 1 + slack at some small dt and exceeds 1 below it too. Below a
+  // genuine limit the excess is negative (damping) or zero up to the finite differences'
+  // noise (a symplectic method's undamped modes, about 1e-8). So at half the limit found an
+  // excess still above slack / 32 (explicit Euler there: slack / 4, the midpoint rule
+  // slack / 16) says no dt is stable. Only a limit far below the first guess (2 / w_max) is
+  // asked: that is where such a "limit" lands.
+  if (lo < 0.25 * firstGuess) {
+    ++out.evaluations;
+    const double half = 0.5 * lo;
+    const double r = radiusOf(runs, half, o).radius;
+    if (r - 1.0 - 2.0 * growth * half > o.radiusSlack / 32.0) lo = 0.0;
   }
   out.dt = lo;
   out.steps = runs.steps();

@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include <springlab/symplectic_euler.hpp>
 
@@ -47,6 +49,34 @@ TEST(SymplecticEuler, BlowsUpJustAboveWdt2AndSaysWhy) {
     // The limit of the linearised step, 2 / w_max = 2 s to the bisection's 0.2 %.
     EXPECT_NE(what.find("stable only below dt = 1.99"), std::string::npos) << "the safe dt 2 s must be named: " << what;
   }
+}
+
+// A limit computed elsewhere (the viewer's worker, on a copy) names the cause without being
+// computed again; a new method or an edited model forgets it.
+TEST(SymplecticEuler, BlowUpMessageTakesAKnownLimitUntilTheMethodOrModelChanges) {
+  auto messageAt = [](AnchoredOscillators& sim) {
+    try {
+      for (int n = 0; n < 20000; ++n) sim.operate(2.01);
+    } catch (const BlowUp& e) {
+      return std::string(e.what());
+    }
+    return std::string("no blow-up");
+  };
+  AnchoredOscillators sim(1, 1.0, 1.0);
+  sim.setKnownStepLimit(1.5);
+  EXPECT_EQ(sim.knownStepLimit(), std::optional<double>(1.5));
+  EXPECT_NE(messageAt(sim).find("stable only below dt = 1.5 s"), std::string::npos) << messageAt(sim);
+
+  AnchoredOscillators changedMethod(1, 1.0, 1.0);
+  changedMethod.setKnownStepLimit(1.5);
+  changedMethod.setIntegrator(std::make_unique<SymplecticEuler>());
+  EXPECT_FALSE(changedMethod.knownStepLimit());
+  EXPECT_NE(messageAt(changedMethod).find("stable only below dt = 1.99"), std::string::npos);
+
+  AnchoredOscillators edited(1, 1.0, 1.0);
+  edited.setKnownStepLimit(1.5);
+  edited.editModel([](Simulation&) {});
+  EXPECT_FALSE(edited.knownStepLimit());
 }
 
 TEST(SymplecticEuler, ConvergesAtFirstOrder) {

@@ -47,6 +47,8 @@ EXPECTED_EXIT = [
      "question 6 of handout 03: explicit Euler blows up in the ball's second landing (exit 4, blow-up)"),
     (r"^\./springlab sim scenes/rope\.json --dt 0\.0024 --steps 5000", 4,
      "section 5 of handout 01: symplectic Euler past the rope's limit, stopped by passivity (exit 4)"),
+    (r"^\./springlab sim scenes/rope\.json --set rope\.air_friction=0 --integrator explicit_euler", 4,
+     "section 5 of handout 01: without air explicit Euler has no stable dt on the rope (exit 4)"),
     (r"^\./springlab run rope --integrator explicit_euler --dt 0\.0005", 4,
      "section 5: explicit Euler blows up on the rope at dt = 0.5 ms; the headless run says so (exit 4)"),
 ]

@@ -140,6 +140,12 @@ class Simulation {
   // Whether a blow-up's message names the likely cause from the step's exact limit
   // (BlowUpCheck::setExplainCause; studies' trials turn it off, they need only the verdict).
   void setBlowUpExplanation(bool explain) { blowUpCheck_.setExplainCause(explain); }
+  // The stability limit of this scene's step (stepStableDt) when someone already computed it
+  // (the viewer's worker, on a copy): the blow-up check then uses it instead of computing it
+  // again, which on a 80-mass rope takes seconds. Forgotten when the integrator or the model
+  // changes.
+  void setKnownStepLimit(std::optional<double> dt) { knownStepLimit_ = dt; }
+  std::optional<double> knownStepLimit() const { return knownStepLimit_; }
 
   // ---- diagnostics --------------------------------------------------------------------
   Energies energies() const;
@@ -232,6 +238,7 @@ class Simulation {
   State initialState_;
   BlowUpCheck blowUpCheck_;
   bool blowUpCheckEnabled_ = true;
+  std::optional<double> knownStepLimit_;  // s, setKnownStepLimit
   int mutedForceTerm_ = -1;  // index into forceTermNames(), -1: every term acts
   std::optional<int> grabbed_;
   Vec3 grabTarget_ = Vec3::Zero();

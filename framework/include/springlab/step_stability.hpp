@@ -31,6 +31,8 @@
 // dt. A closed form per method and mode (undamped c / w_max, explicit Euler's kd / k,
 // symplectic Euler's w^2 dt^2 + 2 gamma dt < 4, the stability polynomials of RK4 and the
 // midpoint rule) is a test of this, not part of it.
+#include <functional>
+#include <stdexcept>
 #include <string>
 
 #include "springlab/simulation.hpp"
@@ -52,6 +54,14 @@ struct StepStabilityOptions {
   bool settle = true;            // linearise at the settled state (false: at the initial state)
   long settleEvaluations = 400000;  // settling budget: force evaluations x free coordinates
   long settleSteps = 4000;       // and at most this many steps (at least 100)
+  // Asked before every run of the scene; true stops the computation with
+  // StepStabilityCancelled (the viewer's worker, when the scene or the method changed).
+  std::function<bool()> cancelled;
+};
+
+// Thrown by the functions below when options.cancelled() said so; the simulation is left reset.
+struct StepStabilityCancelled : std::runtime_error {
+  StepStabilityCancelled() : std::runtime_error("the stability limit's computation was cancelled") {}
 };
 
 // The spectral radius of the scene's linearised step at dt, at its settled state.

@@ -111,9 +111,9 @@ void drawControls(Simulation* sim, const std::vector<std::string>& integratorNam
   // The warning a student should see before the run blows up.
   if (sim && stableDt >= 0.0 && control.dt > stableDt) {
     if (stableDt == 0.0) {
-      ImGui::TextColored(kYellow, "%s has no stable dt without damping", integrator.c_str());
+      ImGui::TextColored(kYellow, "%s has no stable dt on this scene", integrator.c_str());
     } else {
-      ImGui::TextColored(kYellow, "dt exceeds the predicted stable limit\n%.3g s of %s", stableDt, integrator.c_str());
+      ImGui::TextColored(kYellow, "dt is past the stable limit\n%.3g s of %s on this scene", stableDt, integrator.c_str());
     }
   }
 

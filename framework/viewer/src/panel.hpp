@@ -74,7 +74,8 @@ struct HudInfo {
 void drawHud(const HudInfo& hud);
 
 // The control panel. `sim` may be null (the scene could not be built); stableDt is
-// predictedStableDt of the current integrator (0: no stable dt, negative: unknown).
+// the stability limit of the step that runs (stepStableDt: 0 no stable dt, +inf none,
+// negative: not known yet).
 void drawControls(Simulation* sim, const std::vector<std::string>& integratorNames, const std::string& integrator,
                   double stableDt, RunControl& control);
 

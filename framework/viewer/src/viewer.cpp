@@ -23,10 +23,11 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "springlab/energy_source.hpp"
-#include "springlab/frequency_estimate.hpp"
+#include "springlab/parameter.hpp"
 
 #include "camera.hpp"
 #include "force_colors.hpp"
@@ -34,6 +35,7 @@
 #include "picking.hpp"
 #include "renderer.hpp"
 #include "snapshot.hpp"
+#include "step_limit_worker.hpp"
 #include "to_glm.hpp"
 
 namespace springlab {
@@ -53,6 +55,7 @@ MissingExercise missingFrom(const NotImplemented& e) { return {e.exerciseId(), e
 
 // The scene: what loadScene gave, or only the settings when building it threw NotImplemented.
 struct Scene {
+  std::string path;  // the scene file, loaded again for the dt warning's copy
   SceneSettings settings;
   std::unique_ptr<Simulation> sim;
   std::optional<MissingExercise> missingAtLoad;
@@ -222,7 +225,13 @@ class Viewer : public LiveViewer {
   static constexpr long kEnergyCheckFrames = 60;
   long steppedFrames_ = 0;
   bool energyWarned_ = false;
-  std::optional<double> maxAngularFrequency_;  // rad/s, cached Lanczos estimate for the dt warning
+  // The dt warning: the exact limit of the step that runs (stepStableDt), computed on a copy
+  // of the scene beside the frames; again when the method or a parameter changes.
+  void requestStepLimit();
+  viewer::StepLimitWorker stepLimit_;
+  bool stepLimitStale_ = true;
+  std::string stepLimitNoted_;  // the last warning printed on the terminal (printed once)
+  static constexpr double kLastFrameWait = 30.0;  // s a --frames run's last frame waits for the limit
   // The HUD's energies and observables, and the simulated time and wall time they are of.
   struct HudNumbers {
     double time = 0.0;
@@ -623,7 +632,6 @@ void Viewer::interact() {
   if (control_.resetRequested) {
     control_.resetRequested = false;
     guarded([&] { sim->reset(); });
-    maxAngularFrequency_.reset();
     hudNumbers_.reset();
     if (!runError_.empty()) control_.paused = false;  // R resets and continues after a blow-up
     runError_.clear();
@@ -634,6 +642,7 @@ void Viewer::interact() {
     const std::string name = *control_.integratorRequested;
     control_.integratorRequested.reset();
     guarded([&] { sim->setIntegrator(registry_.makeIntegrator(name)); });
+    stepLimitStale_ = true;
     if (!scene_.missingAtLoad) missing_.reset();  // the missing piece may have been the old method
   }
   if (control_.parameterEdit) {
@@ -644,7 +653,7 @@ void Viewer::interact() {
       const std::vector<Parameter> parameters = sim->parameters();
       if (edit.index < parameters.size()) parameters[edit.index].set(edit.value);
     });
-    maxAngularFrequency_.reset();
+    stepLimitStale_ = true;
     hudNumbers_.reset();
   }
 
@@ -744,6 +753,30 @@ void Viewer::draw(bool last) {
   drawGui(last);
 }
 
+void Viewer::requestStepLimit() {
+  stepLimitStale_ = false;
+  scene_.sim->setKnownStepLimit(std::nullopt);
+  // The copy: the scene file again, with the sliders' values and the method the viewer runs.
+  // Not for a method built to be stable at every dt (implicit Euler, XPBD, projective
+  // dynamics): its limit, where it has one, lies far above any dt the panel offers, and on the
+  // 64 x 64 cloth implicit Euler's solves to 1e-12 take 44 s of a core to find it.
+  std::unique_ptr<Simulation> copy;
+  if (std::isinf(scene_.sim->integrator().stabilityConstant())) {
+    stepLimit_.start(nullptr);
+    return;
+  }
+  try {
+    LoadedScene loaded = registry_.loadScene(scene_.path);
+    const std::vector<Parameter> shown = scene_.sim->parameters(), copied = loaded.sim->parameters();
+    for (std::size_t i = 0; i < shown.size() && i < copied.size(); ++i) copied[i].set(shown[i].get());
+    loaded.sim->setIntegrator(registry_.makeIntegrator(scene_.sim->integrator().name()));
+    copy = std::move(loaded.sim);
+  } catch (const std::exception&) {
+    copy.reset();  // a missing exercise or an integrator that cannot be made: no warning
+  }
+  stepLimit_.start(std::move(copy));
+}
+
 void Viewer::drawGui(bool last) {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
@@ -779,12 +812,32 @@ void Viewer::drawGui(bool last) {
       hud.time = hudNumbers_->time;  // the time the numbers are of
       hud.energies = hudNumbers_->energies;
       hud.observables = hudNumbers_->observables;
-      // w_max from the Lanczos estimate (a few dozen force evaluations), cached until the
-      // scene's parameters change or it is reset.
-      if (!maxAngularFrequency_) maxAngularFrequency_ = lanczosEstimate(*sim, sim->state).maxAngularFrequency;
-      stableDt = predictedStableDt(sim->integrator(), *maxAngularFrequency_);
     } catch (const std::exception&) {
       // A missing exercise or a broken state: the HUD leaves the numbers out.
+    }
+  }
+  // The step's exact limit, once the worker has it (the last frame of a --frames run waits for
+  // it, so its snapshot shows the warning); the terminal gets each new warning once.
+  if (sim && !missing_) {
+    if (stepLimitStale_) requestStepLimit();
+    if (last) stepLimit_.wait(kLastFrameWait);
+    if (const std::optional<double> limit = stepLimit_.limit()) {
+      stableDt = *limit;
+      // The blow-up message takes it from here instead of computing it on this thread.
+      if (sim->knownStepLimit() != limit) sim->setKnownStepLimit(limit);
+    }
+  }
+  if (stableDt >= 0.0 && control_.dt > stableDt) {
+    std::ostringstream note;
+    if (stableDt == 0.0) {
+      note << hud.integrator << " has no stable dt on this scene (its linearised step grows at every dt)";
+    } else {
+      note << "dt = " << control_.dt << " s is past the stability limit of " << hud.integrator << " on this scene, "
+           << stableDt << " s (the linearised step, dampers and contacts included): expect a blow-up";
+    }
+    if (note.str() != stepLimitNoted_) {
+      std::cerr << "springlab view: warning: " << note.str() << "\n";
+      stepLimitNoted_ = note.str();
     }
   }
   viewer::drawHud(hud);
@@ -805,6 +858,7 @@ int runViewer(const Registry& registry, const std::string& scenePath, const View
   // a missing exercise while building still opens the window and says which one.
   Scene scene;
   try {
+    scene.path = scenePath;
     LoadedScene loaded = registry.loadScene(scenePath);
     scene.settings = loaded.settings;
     scene.sim = std::move(loaded.sim);
