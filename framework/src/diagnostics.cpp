@@ -25,11 +25,6 @@ double springGershgorinBound(const Simulation& sim) {
   return std::sqrt(w2);
 }
 
-double predictedStableDt(const Integrator& integrator, double maxAngularFrequency) {
-  if (maxAngularFrequency <= 0.0) return INFINITY;
-  return integrator.stabilityConstant() / maxAngularFrequency;
-}
-
 void BlowUpCheck::arm(const Simulation& sim) {
   // Energy the scene holds now plus what gravity can add over the scene's extent, plus
   // 1 J per kg so that a scene at rest without gravity still has a finite scale.

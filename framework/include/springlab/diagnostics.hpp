@@ -12,7 +12,6 @@
 namespace springlab {
 
 class Simulation;
-class Integrator;
 
 struct Energies {
   double kinetic = 0.0;        // J, sum 1/2 m |v|^2
@@ -26,11 +25,6 @@ struct Energies {
 // theorem on M^-1 K: w_max^2 <= max_i 2 sum_{springs at i} k / m_i. It is exact for a
 // uniform chain, w_max = 2 sqrt(k/m), and never underestimates.
 double springGershgorinBound(const Simulation& sim);
-
-// The largest dt the integrator keeps stable for undamped springs, c / w_max (s);
-// 0 when the method has no stable dt (explicit Euler). Damping, contacts and pressure move
-// the limit: stepStableDt (springlab/step_stability.hpp) gives the limit of the step that runs.
-double predictedStableDt(const Integrator& integrator, double maxAngularFrequency);
 
 // Raised when a run blew up; what() says when, why it is likely, and the safe dt.
 class BlowUp : public std::runtime_error {
