@@ -548,34 +548,23 @@ double axisRitzRadius(const std::vector<Eigen::Index>& axes, const Eigen::Ref<co
 // the coarse ball's explicit Euler limit is 0.32 ms with every direction, 1.95 ms with the
 // stiffest and most damped modes only.
 //
-// Dinkelbach's iteration, with no inverse of C: from mu = the ratio of the stiffest mode, the
-// top eigenvector of K - mu C has a ratio above mu unless mu is already the largest; take its
-// ratio and repeat (superlinear; a few Lanczos runs). A direction C does not damp at all has
-// an infinite ratio: the iteration stops at it.
+// With no inverse of C: mu_0 = the ratio of the stiffest mode, and the top eigenvectors of
+// K - mu_0 C are the modes whose ratio exceeds mu_0 the most (one Lanczos run). Repeating
+// with the ratio found (Dinkelbach's iteration, which converges to the largest ratio) costs
+// a Lanczos run each and narrowed the vectors onto a cluster of nearly equal ratios: on the
+// inflated ball the limit on them fell from 2.5 % to 9 % below every direction's.
 template <class ApplyK, class ApplyC>
 Eigen::MatrixXd stiffestForTheirDamping(const ApplyK& applyK, const ApplyC& applyC, const Eigen::MatrixXd& stiff, int n,
                                         int k) {
   if (stiff.cols() == 0 || n == 0) return Eigen::MatrixXd(n, 0);
-  auto ratio = [&](const Eigen::VectorXd& u, double& kk) {
-    kk = u.dot(applyK(u));
-    const double cc = u.dot(applyC(u));
-    return cc > 1e-12 * std::abs(kk) ? kk / cc : INFINITY;
-  };
-  double kk = 0.0;
-  double mu = ratio(stiff.col(0), kk);
-  Eigen::MatrixXd vectors;
-  for (int iteration = 0; iteration < 4 && std::isfinite(mu); ++iteration) {
-    const double m = mu;
-    vectors = topEigenvectors([&](const Eigen::VectorXd& u) { Eigen::VectorXd out = applyK(u); out -= m * applyC(u); return out; },
-                              n, k, 2026 + static_cast<unsigned>(iteration), false);
-    if (vectors.cols() == 0) break;
-    const double next = ratio(vectors.col(0), kk);
-    // Stop when the ratio rises by under 2 %: the modes near the top, not the top itself, are
-    // what the Ritz subspace needs.
-    if (!(kk > 0.0) || !(next > mu * 1.02)) break;
-    mu = next;
-  }
-  return vectors;
+  const Eigen::VectorXd first = stiff.col(0);
+  const double kk = first.dot(applyK(first));
+  const double cc = first.dot(applyC(first));
+  // The stiffest mode undamped: its ratio is infinite, and explicit Euler fails on it first.
+  if (!(cc > 1e-12 * std::abs(kk))) return Eigen::MatrixXd(n, 0);
+  const double mu = kk / cc;
+  return topEigenvectors([&](const Eigen::VectorXd& u) { Eigen::VectorXd out = applyK(u); out -= mu * applyC(u); return out; },
+                         n, k, 2026, false);
 }
 
 // A fixed pseudo-random direction (the same on every run), largest entry 1.

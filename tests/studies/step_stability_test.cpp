@@ -283,7 +283,7 @@ TEST(InflatedBall, PressureLowersTheLimitAndTheRunsAgree) {
 // shipped, coarsened, where it settles: 0.321 against 0.321 ms, where the stiffest and most
 // damped modes alone said 1.95 ms). Damping that is not proportional (spring dampers and air)
 // leaves the modes' span not quite invariant under the step, and the Ritz radius on it then
-// errs high: a limit up to 10 % low, on the safe side (this inflated ball: 0.181 against 0.199 ms).
+// errs high: a limit a little low, on the safe side (this inflated ball: 0.194 against 0.199 ms).
 TEST(InflatedBall, ExplicitEulerFailsFirstOnTheWobbleTheAirAloneDamps) {
   const SceneDocument ball = inflatedBall(30);
   auto limit = [&](int denseBelow) {
@@ -296,7 +296,7 @@ TEST(InflatedBall, ExplicitEulerFailsFirstOnTheWobbleTheAirAloneDamps) {
   const double everyDirection = limit(100000);
   const double modal = limit(0);
   ASSERT_TRUE(std::isfinite(everyDirection) && everyDirection > 0.0) << everyDirection;
-  EXPECT_GT(modal, 0.88 * everyDirection) << "modal " << modal << " s, every direction " << everyDirection << " s";
+  EXPECT_GT(modal, 0.95 * everyDirection) << "modal " << modal << " s, every direction " << everyDirection << " s";
   EXPECT_LT(modal, 1.02 * everyDirection) << "modal " << modal << " s, every direction " << everyDirection << " s";
   const double symplectic = studies::sceneStepStableDt(allLabs(), ball, "symplectic_euler");
   EXPECT_LT(modal, 0.5 * symplectic) << "the wobble is soft: symplectic Euler, set by the stiffest modes, goes far higher";
