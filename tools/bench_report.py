@@ -48,7 +48,7 @@ def load(path):
             continue
         runs[name] = b
     if not any(n.startswith(("NetStep", "SpringForcePass", "MemoryTriad", "NetFrame", "RopeStep", "BallStep",
-                             "ClothDrape", "BulletClothDrape"))
+                             "ClothDrape", "BulletClothDrape", "StepStableDt"))
                for n in runs):
         sys.exit(f"bench_report: {path}: no springlab benchmark in it (field 'benchmarks')")
     return data.get("context", {}), runs
@@ -219,6 +219,22 @@ def report(context, runs):
         lines.append("## Rope and ball\n")
         lines.append("One symplectic Euler step of the lab's default scene.\n")
         lines.append(table(["scene", "us/step", "steps/s", "forces share"], rows))
+        lines.append("")
+
+    # ---- the stability limit (bench/step_stability.cpp: its methods in that order)
+    methods = ["symplectic_euler", "rk4", "implicit_euler"]
+    rows = []
+    for name, b in sorted(runs.items(), key=lambda item: (args(item[0]).get("method", 0), args(item[0]).get("r", 0))):
+        if name.startswith("StepStableDt"):
+            a = args(name)
+            m = a.get("method", -1)
+            rows.append([str(a.get("r")), methods[m] if 0 <= m < len(methods) else str(m),
+                         fmt(b.get("cpu_s")), fmt(b.get("limit_ms"))])
+    if rows:
+        lines.append("## The stability limit of the step\n")
+        lines.append("stepStableDt on net_hanging.json (r x r masses, as shipped), one thread: CPU seconds and the "
+                     "limit found.\n")
+        lines.append(table(["r", "method", "CPU s", "limit (ms)"], rows))
         lines.append("")
     return "\n".join(lines)
 
