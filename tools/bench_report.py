@@ -221,15 +221,13 @@ def report(context, runs):
         lines.append(table(["scene", "us/step", "steps/s", "forces share"], rows))
         lines.append("")
 
-    # ---- the stability limit (bench/step_stability.cpp: its methods in that order)
-    methods = ["symplectic_euler", "rk4", "implicit_euler"]
+    # ---- the stability limit (bench/step_stability.cpp labels each run with its method)
     rows = []
     for name, b in sorted(runs.items(), key=lambda item: (args(item[0]).get("method", 0), args(item[0]).get("r", 0))):
         if name.startswith("StepStableDt"):
             a = args(name)
-            m = a.get("method", -1)
-            rows.append([str(a.get("r")), methods[m] if 0 <= m < len(methods) else str(m),
-                         fmt(b.get("cpu_s")), fmt(b.get("limit_ms"))])
+            rows.append([str(a.get("r")), b.get("label") or str(a.get("method")), fmt(b.get("cpu_s")),
+                         fmt(b.get("limit_ms"))])
     if rows:
         lines.append("## The stability limit of the step\n")
         lines.append("stepStableDt on net_hanging.json (r x r masses, as shipped), one thread: CPU seconds and the "

@@ -322,7 +322,8 @@ def stability(folder):
         elif p > 0:
             if p >= bottom:
                 ax.hlines(p, x - 0.35, x + 0.35, color="black", lw=2)
-            # A trial stretched to its cap (100 times the study's duration) still could not
+            # A trial stretched to its cap (100 times the study's duration, stabilityTrialDuration
+            # in framework/studies/stability.cpp) still could not
             # show the growth just past the limit (explicit Euler on the ball: the wobble only the
             # air damps grows by e in about 9 minutes at 1.03 times the limit).
             capped = float(r.get("duration_s", 0) or 0) >= 99 * float(facts.get("duration_s", inf))

@@ -46,8 +46,8 @@ Eigen::VectorXd randomDirection(int size, unsigned seed);
 template <class Apply>
 Eigen::MatrixXd topEigenvectors(const Apply& apply, int n, int k, unsigned seed, bool distinctOnly);
 template <class ApplyK, class ApplyC>
-Eigen::MatrixXd stiffestForTheirDamping(const ApplyK& applyK, const ApplyC& applyC, const Eigen::MatrixXd& stiff, int n,
-                                        int k);
+Eigen::MatrixXd stiffestForTheirDamping(const ApplyK& applyK, const ApplyC& applyC, const Eigen::VectorXd& stiffest,
+                                        int n, int k);
 
 // Runs the scene from its initial state, or from it moved by a perturbation, and records
 // the free coordinates after each step, made dimensionless: positions over the typical
@@ -436,7 +436,8 @@ class LinearisedRuns {
     const auto applyC = symmetric(true);
     const Eigen::MatrixXd stiff = topEigenvectors(applyK, n, count, 2024, false);
     const Eigen::MatrixXd damped = topEigenvectors(applyC, n, count, 2025, true);
-    const Eigen::MatrixXd light = stiffestForTheirDamping(applyK, applyC, stiff, n, std::max(1, count / 2));
+    const Eigen::MatrixXd light = stiffestForTheirDamping(
+        applyK, applyC, stiff.cols() > 0 ? Eigen::VectorXd(stiff.col(0)) : Eigen::VectorXd(), n, std::max(1, count / 2));
     sim_.stats = stats;
 
     // Mode shapes x = M^-1/2 psi, as displacements and as velocities.
@@ -539,7 +540,8 @@ double axisRitzRadius(const std::vector<Eigen::Index>& axes, const Eigen::Ref<co
   return eig.eigenvalues().cwiseAbs().maxCoeff();
 }
 
-// The k modes stiffest for their damping: the largest ratios mu = u^T K u / u^T C u (K, C
+// The k modes stiffest for their damping (`stiffest`: the stiffest mode's vector): the largest
+// ratios mu = u^T K u / u^T C u (K, C
 // mass-normalised, applied by `applyK`, `applyC`; for proportional damping mu = w^2 / gamma
 // of a mode). Neither the stiffest nor the most damped modes: explicit Euler fails first on
 // the largest mu (its limit on a mode is gamma / w^2), the midpoint rule nearly so, and a
@@ -554,12 +556,11 @@ double axisRitzRadius(const std::vector<Eigen::Index>& axes, const Eigen::Ref<co
 // a Lanczos run each and narrowed the vectors onto a cluster of nearly equal ratios: on the
 // inflated ball the limit on them fell from 2.5 % to 9 % below every direction's.
 template <class ApplyK, class ApplyC>
-Eigen::MatrixXd stiffestForTheirDamping(const ApplyK& applyK, const ApplyC& applyC, const Eigen::MatrixXd& stiff, int n,
-                                        int k) {
-  if (stiff.cols() == 0 || n == 0) return Eigen::MatrixXd(n, 0);
-  const Eigen::VectorXd first = stiff.col(0);
-  const double kk = first.dot(applyK(first));
-  const double cc = first.dot(applyC(first));
+Eigen::MatrixXd stiffestForTheirDamping(const ApplyK& applyK, const ApplyC& applyC, const Eigen::VectorXd& stiffest,
+                                        int n, int k) {
+  if (stiffest.size() == 0 || n == 0) return Eigen::MatrixXd(n, 0);
+  const double kk = stiffest.dot(applyK(stiffest));
+  const double cc = stiffest.dot(applyC(stiffest));
   // The stiffest mode undamped: its ratio is infinite, and explicit Euler fails on it first.
   if (!(cc > 1e-12 * std::abs(kk))) return Eigen::MatrixXd(n, 0);
   const double mu = kk / cc;
