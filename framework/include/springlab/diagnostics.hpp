@@ -33,16 +33,18 @@ class BlowUp : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Watches a run, with three detectors: a non-finite state; kinetic plus elastic plus other
+// Watches a run, with four detectors: a non-finite state; kinetic plus elastic plus other
 // potential energy (otherPotentialEnergy: ground, gas) grown far beyond the energy the scene
 // could ever hold (its initial energy plus the work gravity can do: the runaway factor); and
 // passivity: a scene that puts no energy in (no wind, pump, moving pinned mass or user drag)
 // cannot gain energy, so a total energy (gravity included) above the highest it had while
 // energy came in, by more than the integrator's own energy oscillation, is a blow-up. Past
 // the stability limit a nonlinear scene often saturates instead of overflowing (springs flip,
-// the state turns to noise at a bounded energy): passivity catches that. Passivity is for
-// methods that rest at the scene's static equilibrium (Integrator::restsAtStaticEquilibrium);
-// the others are watched by the first two detectors.
+// the state turns to noise at a bounded energy): passivity catches that. And the climb:
+// passivity counted from the lowest energy since energy last came in, for an instability that
+// saturates after the scene has lost most of its start (kClimbFraction). Passivity and the
+// climb are for methods that rest at the scene's static equilibrium
+// (Integrator::restsAtStaticEquilibrium); the others are watched by the first two detectors.
 //
 // The oscillation allowed: a stable step's true energy swings about a conserved (modified)
 // one. On a mode at a fraction r = dt / limit of its limit symplectic Euler's energy swings
