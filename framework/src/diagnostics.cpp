@@ -44,8 +44,20 @@ void BlowUpCheck::arm(const Simulation& sim) {
   energyScale_ = std::abs(e.kinetic) + std::abs(e.elastic) + std::abs(e.other) +
                  totalMass * (sim.gravitation.norm() * extent + 1.0);
   passiveCeiling_ = e.total();
+  restartClimb(e.total());
   last_ = sim.state;
   lastStep_ = sim.stats.steps;
+}
+
+void BlowUpCheck::restartClimb(double energy) {
+  low_ = energy;
+  recentCount_ = 0;
+  recentNext_ = 0;
+  fastSwing_ = 0.0;
+}
+
+double BlowUpCheck::climbAllowance() const {
+  return std::max({passivityAllowance(), kFastSwingMargin * fastSwing_, kClimbFraction * (passiveCeiling_ - low_)});
 }
 
 double BlowUpCheck::passivityAllowance() const {
@@ -245,15 +257,18 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
          << kRunawayFactor << " times the scene's energy scale of " << energyScale_ << " J";
       why = os.str();
     } else if (sim.suppliesEnergy() || anchorsMoved(sim, last_)) {
-      // Energy comes in (wind, pump, a moving anchor): the ceiling follows it up.
+      // Energy comes in (wind, pump, a moving anchor): the ceiling follows it up, and a climb
+      // counts from here.
       passiveCeiling_ = std::max(passiveCeiling_, e.total());
-    } else if (sim.integrator().restsAtStaticEquilibrium() && e.total() > passiveCeiling_ + passivityAllowance() &&
-               beyondLimitOrMeasured(sim, dt)) {
+      restartClimb(e.total());
+    } else if (!sim.integrator().restsAtStaticEquilibrium()) {
+      // A method that rests away from the springs' equilibrium (XPBD from zero multipliers,
+      // projective dynamics): the scene's spring energy is not its own, and it rests calmly
+      // holding more of it (the 8 x 8 fabric under XPBD at 50 ms: +0.008 J above its flat
+      // start, at rest). Neither passivity nor the climb applies.
+    } else if (e.total() > passiveCeiling_ + passivityAllowance() && beyondLimitOrMeasured(sim, dt)) {
       // Detector 3, passivity: nothing puts energy in, yet the total energy rose above the
-      // ceiling by more than the integrator's own oscillation. Not for a method that rests
-      // away from the springs' equilibrium (XPBD from zero multipliers, projective dynamics):
-      // the scene's spring energy is not its own, and it rests calmly holding more of it
-      // (the 8 x 8 fabric under XPBD at 50 ms: +0.008 J above its flat start, at rest).
+      // ceiling by more than the integrator's own oscillation.
       std::ostringstream os;
       os << "passivity: the total energy rose to " << e.total() << " J, " << e.total() - passiveCeiling_
          << " J above the most the scene held while energy came in (" << passiveCeiling_
@@ -264,6 +279,30 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
                                  : "half the energy scale, no swing was measured, and dt is past the step's limit")
          << ")";
       why = os.str();
+    } else {
+      // Detector 4, a climb back from the low (see kClimbFraction): the fast swing first
+      // takes this step's energy in, so that a jump within the window is a swing, not a climb.
+      const double now = e.total();
+      if (recentCount_ > 0) {
+        double windowLow = now;
+        for (int k = 0; k < recentCount_; ++k) windowLow = std::min(windowLow, recent_[static_cast<std::size_t>(k)]);
+        fastSwing_ = std::max(fastSwing_, now - windowLow);
+      }
+      recent_[static_cast<std::size_t>(recentNext_)] = now;
+      recentNext_ = (recentNext_ + 1) % kFastWindow;
+      recentCount_ = std::min(recentCount_ + 1, kFastWindow);
+      low_ = std::min(low_, now);
+      if (now - low_ > climbAllowance() && beyondLimitOrMeasured(sim, dt)) {
+        std::ostringstream os;
+        os << "passivity: the total energy climbed back to " << now << " J, " << now - low_
+           << " J above its lowest since energy last came in (" << low_
+           << " J), in a scene that puts no energy in (no wind, pump, moving anchor or drag): a stable step's energy "
+              "swings but does not win back what the scene lost (allowed "
+           << climbAllowance() << " J, the largest of the integrator's own oscillation " << passivityAllowance()
+           << " J, twice its largest rise within " << kFastWindow << " steps " << kFastSwingMargin * fastSwing_
+           << " J, and " << 100.0 * kClimbFraction << " % of the " << passiveCeiling_ - low_ << " J the scene lost)";
+        why = os.str();
+      }
     }
   }
   if (why.empty()) {

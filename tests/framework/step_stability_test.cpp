@@ -109,7 +109,17 @@ TEST(StepStability, LeavesTheSceneAtItsStart) {
 // computation stops at its next run of the scene (the n-th question) and leaves the scene as
 // a finished one does, its solver tolerance and blow-up check as they were.
 TEST(StepStability, CancelledComputationStopsAndLeavesTheSceneAtItsStart) {
-  for (int askedBeforeCancel : {0, 5, 200}) {
+  // How often a whole computation asks, so that the stops below fall inside it (its start,
+  // its settling, its middle, its last run).
+  int questions = 0;
+  {
+    AnchoredOscillators sim(2, 1.0, 100.0, 2.0);
+    StepStabilityOptions o;
+    o.cancelled = [&] { return ++questions < 0; };
+    stepStableDt(sim, o);
+  }
+  ASSERT_GT(questions, 10);
+  for (int askedBeforeCancel : {0, 5, questions / 2, questions - 1}) {
     AnchoredOscillators sim(2, 1.0, 100.0, 2.0);
     const State start = sim.state;
     const double tolerance = sim.solver.tolerance;

@@ -1,6 +1,7 @@
 #pragma once
 // Diagnostics every system provides: energies, momentum, the largest angular frequency and
 // the blow-up check that stops a run with a message naming the likely cause.
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -32,16 +33,18 @@ class BlowUp : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Watches a run, with three detectors: a non-finite state; kinetic plus elastic plus other
+// Watches a run, with four detectors: a non-finite state; kinetic plus elastic plus other
 // potential energy (otherPotentialEnergy: ground, gas) grown far beyond the energy the scene
 // could ever hold (its initial energy plus the work gravity can do: the runaway factor); and
 // passivity: a scene that puts no energy in (no wind, pump, moving pinned mass or user drag)
 // cannot gain energy, so a total energy (gravity included) above the highest it had while
 // energy came in, by more than the integrator's own energy oscillation, is a blow-up. Past
 // the stability limit a nonlinear scene often saturates instead of overflowing (springs flip,
-// the state turns to noise at a bounded energy): passivity catches that. Passivity is for
-// methods that rest at the scene's static equilibrium (Integrator::restsAtStaticEquilibrium);
-// the others are watched by the first two detectors.
+// the state turns to noise at a bounded energy): passivity catches that. And the climb:
+// passivity counted from the lowest energy since energy last came in, for an instability that
+// saturates after the scene has lost most of its start (kClimbFraction). Passivity and the
+// climb are for methods that rest at the scene's static equilibrium
+// (Integrator::restsAtStaticEquilibrium); the others are watched by the first two detectors.
 //
 // The oscillation allowed: a stable step's true energy swings about a conserved (modified)
 // one. On a mode at a fraction r = dt / limit of its limit symplectic Euler's energy swings
@@ -67,6 +70,21 @@ class BlowUpCheck {
   // limit there passed while gaining 0.014 J from nothing in its first 0.04 s.
   static constexpr double kSwingMargin = 64.0;
   static constexpr double kSwingFloor = 1e-7;
+  // Detector 4, a climb: a passive scene that has lost energy cannot win it back. An
+  // instability that saturates after the scene has dissipated most of its start (the rope
+  // under the midpoint rule just past its limit: falls from 0 to -47.6 J, then climbs back by
+  // 5 to 9 J and swings there) never reaches the ceiling above, so the climb counts from the
+  // lowest energy since energy last came in. A stable step's energy still moves: fast (its
+  // own oscillation near the limit, up to 180 J within a step on the instantly inflated ball at
+  // 0.97 times its limit) and slowly (the midpoint rule on the resting ball wanders 0.07 J
+  // about its low over minutes). So a climb counts only past kFastSwingMargin times the largest
+  // rise within kFastWindow steps seen so far, and past kClimbFraction of what the scene lost
+  // from its ceiling to its low (measured margins: at 0.97 times the limit every shipped scene,
+  // the damped chain and the inflated ball stay below half of that; the rope's midpoint rule at
+  // 1.03 times climbs 5 times past it).
+  static constexpr int kFastWindow = 64;
+  static constexpr double kFastSwingMargin = 2.0;
+  static constexpr double kClimbFraction = 0.02;
 
   void arm(const Simulation& sim);  // measure the energy scale of the scene as it starts
   // The user put energy in (dragged, pinned): never count that as a blow-up.
@@ -115,6 +133,17 @@ class BlowUpCheck {
   bool beyondLimit_ = true;
   double limit_ = NAN;       // s, the exact limit computed at limitDt_ (reused by the message)
   bool explainCause_ = true;
+  // The climb (detector 4): the lowest total energy since energy last came in, the energies of
+  // the last kFastWindow checks (a ring) and the largest rise within such a window so far.
+  double low_ = 0.0;       // J
+  std::array<double, kFastWindow> recent_{};
+  int recentCount_ = 0;
+  int recentNext_ = 0;
+  double fastSwing_ = 0.0;  // J
+  void restartClimb(double energy);
+  // The climb's allowance now: the larger of the passivity allowance, the fast swings' and the
+  // fraction of what the scene lost.
+  double climbAllowance() const;
   // The state at the last check that passed (or at arm()): where the forces are evaluated
   // again when the state turns non-finite.
   State last_;

@@ -28,8 +28,9 @@
 //   run (Arnoldi on snapshots) was tried first: its Ritz values of the far-from-normal step
 //   map land outside the unit circle at any dt.
 
-// The limit is then a bracket (doubling or halving from a first guess) and a bisection on
-// dt. A closed form per method and mode (undamped c / w_max, explicit Euler's kd / k,
+// The limit is then a bracket (doubling or halving from a first guess) narrowed on dt to
+// the tolerance (probes aimed where the unstable radii extrapolate to 1, a secant, bisection as
+// the safeguard: stepStabilityLimit in step_stability.cpp). A closed form per method and mode (undamped c / w_max, explicit Euler's kd / k,
 // symplectic Euler's w^2 dt^2 + 2 gamma dt < 4, the stability polynomials of RK4 and the
 // midpoint rule) is a test of this, not part of it.
 #include <functional>
