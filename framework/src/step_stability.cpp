@@ -410,28 +410,23 @@ class LinearisedRuns {
     const State at = sim_.state;
     const Stats stats = sim_.stats;
     std::vector<Vec3> plus, minus;
-    // B u = M^-1/2 A M^-1/2 u with A = a K + b C applied as one central difference of the
-    // forces: A d = -(F(x + a h d, v + b h d) - F(x - a h d, v - b h d)) / 2h, h keeping each
-    // perturbation within its finite-difference step. K alone (a = 1, b = 0), C alone, or
-    // K - mu C in one pair of force evaluations instead of two.
+    // B u = M^-1/2 A M^-1/2 u with A d = -(F(moved by +h d) - F(moved by -h d)) / 2h, moving
+    // positions (A = K) or velocities (A = C).
     auto mass = [&](int j) { return 1.0 / sim_.inverseMass(dofs_[j].mass); };
-    auto combination = [&](double a, double b) {
-      return [&, a, b](const Eigen::VectorXd& u) {
+    auto symmetric = [&](bool velocities) {
+      return [&, velocities](const Eigen::VectorXd& u) {
         Eigen::VectorXd d(n);
         for (int j = 0; j < n; ++j) d[j] = u[j] / std::sqrt(mass(j));
         Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
         const double largest = d.cwiseAbs().maxCoeff();
         if (largest == 0.0) return out;
-        const double h = std::min(a != 0.0 ? positionStep_ / std::abs(a) : INFINITY,
-                                  b != 0.0 ? velocityStep_ / std::abs(b) : INFINITY) /
-                         largest;
+        const double h = (velocities ? velocityStep_ : positionStep_) / largest;
         State up = at, down = at;
         for (int j = 0; j < n; ++j) {
-          const int i = dofs_[j].mass, c = dofs_[j].axis;
-          up.pos[i][c] += a * h * d[j];
-          down.pos[i][c] -= a * h * d[j];
-          up.vel[i][c] += b * h * d[j];
-          down.vel[i][c] -= b * h * d[j];
+          Vec3& a = velocities ? up.vel[dofs_[j].mass] : up.pos[dofs_[j].mass];
+          Vec3& b = velocities ? down.vel[dofs_[j].mass] : down.pos[dofs_[j].mass];
+          a[dofs_[j].axis] += h * d[j];
+          b[dofs_[j].axis] -= h * d[j];
         }
         sim_.evaluateForces(up, plus);
         sim_.evaluateForces(down, minus);
@@ -442,8 +437,8 @@ class LinearisedRuns {
         return out;
       };
     };
-    const auto applyK = combination(1.0, 0.0);
-    const auto applyC = combination(0.0, 1.0);
+    const auto applyK = symmetric(false);
+    const auto applyC = symmetric(true);
     const Eigen::MatrixXd stiff = topEigenvectors(applyK, n, count, 2024, false);
     const Eigen::MatrixXd damped = topEigenvectors(applyC, n, count, 2025, true);
     const Eigen::MatrixXd light = stiffestForTheirDamping(
