@@ -75,9 +75,9 @@ class BlowUpCheck {
   // under the midpoint rule just past its limit: falls from 0 to -47.6 J, then climbs back by
   // 5 to 9 J and swings there) never reaches the ceiling above, so the climb counts from the
   // lowest energy since energy last came in. A stable step's energy still moves: fast (its
-  // own oscillation near the limit, up to 180 J within a step on the instantly inflated ball at
-  // 0.97 times its limit) and slowly (the midpoint rule on the resting ball wanders 0.07 J
-  // about its low over minutes). So a climb counts only past kFastSwingMargin times the largest
+  // own oscillation near the limit: 88.7 J in one step, 180 J within 64, on the instantly
+  // inflated ball at 0.97 times its limit) and slowly (the midpoint rule on the resting ball
+  // wanders 0.07 J about its low over minutes). So a climb counts only past kFastSwingMargin times the largest
   // rise within kFastWindow steps seen so far, and past kClimbFraction of what the scene lost
   // from its ceiling to its low (measured margins: at 0.97 times the limit every shipped scene,
   // the damped chain and the inflated ball stay below half of that; the rope's midpoint rule at
