@@ -61,12 +61,16 @@ struct RitzBasis {
 class LinearisedRuns {
  public:
   LinearisedRuns(Simulation& sim, const StepStabilityOptions& o)
-      : sim_(sim), dofs_(freeCoordinates(sim)), solverTolerance_(sim.solver.tolerance), cancelled_(o.cancelled) {
+      : sim_(sim), dofs_(freeCoordinates(sim)), solverSettings_(sim.solver), cancelled_(o.cancelled) {
     // An implicit step's linear solve stops at a residual relative to the whole right-hand
     // side: an error of that size, not proportional to the perturbation, would swamp the
     // finite differences. The linearised step is the step with its system solved exactly (a
     // solver error that does not grow is not an instability), so the runs here solve tightly.
     sim_.solver.tolerance = std::min(sim_.solver.tolerance, 1e-12);
+    // Twelve decades are hundreds of block-Jacobi iterations on all but the smallest systems,
+    // and each run starts the solver afresh (Integrator::reset), so the "auto" choice would
+    // spend every run's first step finding that out: the runs take smoothed aggregation.
+    if (sim_.solver.preconditioner == "auto") sim_.solver.preconditioner = "smoothed_aggregation";
     sim_.reset();
     length_ = typicalLength(sim_);
     frequency_ = stiffestFrequency(sim_.initialState());
@@ -82,7 +86,7 @@ class LinearisedRuns {
       try {
         base_ = settledState(o);
       } catch (const StepStabilityCancelled&) {
-        sim_.solver.tolerance = solverTolerance_;  // no destructor runs for a constructor that throws
+        sim_.solver = solverSettings_;  // no destructor runs for a constructor that throws
         throw;
       }
     }
@@ -196,7 +200,7 @@ class LinearisedRuns {
   }
 
   ~LinearisedRuns() {
-    sim_.solver.tolerance = solverTolerance_;
+    sim_.solver = solverSettings_;
     sim_.reset();
   }
   LinearisedRuns(const LinearisedRuns&) = delete;
@@ -475,7 +479,7 @@ class LinearisedRuns {
   double epsilon_ = 1e-6;
   double positionStep_ = 1e-6;  // m, the finite differences' perturbation of a position
   double velocityStep_ = 1e-6;  // m/s, of a velocity
-  double solverTolerance_;  // the scene's own, put back when the runs end
+  SolverSettings solverSettings_;  // the scene's own, put back when the runs end
   std::function<bool()> cancelled_;  // StepStabilityOptions::cancelled
   State base_;              // where the map is linearised: the settled state (empty: the initial one)
   State own_;               // the method's own rest at ownDt_ where it is not base_ (empty: base_)
