@@ -780,7 +780,10 @@ StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const 
   };
   const double tau = std::log1p(o.tolerance);  // the final bracket's width in log dt
 
-  // Bracket: double while stable, halve while unstable.
+  // Bracket: grow while stable, halve while unstable. The growth factor doubles with each
+  // stable probe (2, 4, 8, ...): a method whose limit lies far above 2 / w_max (implicit Euler
+  // on the 64 x 64 cloth: 525 times, where doubling took ten radii of 82 implicit solves each)
+  // or that has none (XPBD) gets there in four, and the wider bracket costs a probe or two.
   double lo = 0.0, hi = 0.0, glo = 0.0, ghi = 0.0;
   bool lastStable = false;  // the last probe's verdict
   const double first = excess(firstGuess);
@@ -788,18 +791,20 @@ StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const 
     lo = firstGuess;
     glo = first;
     lastStable = true;
+    double factor = 2.0;
     while (hi == 0.0) {
       if (lo >= o.largestFactor * firstGuess) {
         out.dt = INFINITY;
         out.steps = runs.steps();
         return out;
       }
-      const double g = excess(2.0 * lo);
+      const double g = excess(factor * lo);
       if (g <= 0.0) {
-        lo *= 2.0;
+        lo *= factor;
         glo = g;
+        factor *= 2.0;
       } else {
-        hi = 2.0 * lo;
+        hi = factor * lo;
         ghi = g;
         lastStable = false;
         noteUnstable(std::log(hi), g);
