@@ -216,6 +216,26 @@ double exactLimit(Simulation& sim) {
   return limit;
 }
 
+// The exact stability limit of the step linearised at `at` (a state the run passed through,
+// moving), leaving the state and counters as the blow-up left them; NaN when it cannot be
+// computed.
+double limitAt(Simulation& sim, const State& at) {
+  const State blownUp = sim.state;
+  const Stats stats = sim.stats;
+  double limit = NAN;
+  try {
+    StepStabilityOptions o;
+    o.at = at;
+    limit = stepStableDt(sim, o);
+  } catch (const std::exception&) {
+    limit = NAN;
+  }
+  sim.state = blownUp;
+  sim.stats = stats;
+  sim.integrator().reset();
+  return limit;
+}
+
 }  // namespace
 
 bool BlowUpCheck::beyondLimitOrMeasured(Simulation& sim, double dt) {
@@ -360,9 +380,27 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
         << " on this scene (dampers, air, contacts and pressure included) is stable only below dt = " << limit
         << " s.";
   } else {
+    // Below the limit where the scene settles, the run may still have passed through a state
+    // stiffer than its rest (the dropped ball's squash on the floor, whose contact damper
+    // lowers symplectic Euler's limit from 1.78 to 1.43 ms): the limit where it was stopped
+    // says whether dt was the cause there.
+    // Not where the limit came from elsewhere (the viewer's worker): computing one here would
+    // hold the caller's thread (seconds on the 80-mass rope).
+    const State& stopped = finiteState ? sim.state : last_;
+    const bool computable = !sim.knownStepLimit() && stopped.pos.size() == sim.masses.size();
+    const double here = computable ? limitAt(sim, stopped) : NAN;
     msg << "dt = " << dt << " s is below the stability limit of " << name << " on this scene linearised where it settles ("
-        << limit << " s), so the step is not the likely cause: the scene left the state it was linearised at, where it settles (a "
-        << "contact, a stiffer configuration, a force that grows without bound).";
+        << limit << " s)";
+    if (std::isfinite(here) && dt > here) {
+      msg << ", but not below its limit where the run was stopped (t = " << stopped.time << " s: " << here
+          << " s). Likely cause: dt, in a state stiffer than the rest (a contact, a squash, a stretched "
+          << "configuration): try a dt below " << here << " s.";
+    } else {
+      if (std::isfinite(here)) msg << " and where the run was stopped (t = " << stopped.time << " s: " << here << " s)";
+      if (!computable) msg << " (its limit where the run was stopped is not computed here: `springlab sim` with this dt names it)";
+      msg << ", so the step is not the likely cause: look for a force that grows without bound, a contact or a "
+          << "constraint that adds energy.";
+    }
   }
   throw BlowUp(msg.str());
 }

@@ -82,7 +82,10 @@ class LinearisedRuns {
     // RK4's limit at its start is 0.077 s, the runs' and the closed form's at rest 0.283 s).
     // Scenes that never settle (wind, a moving anchor) are linearised where the settling
     // budget leaves them, a state of their ordinary motion.
-    if (o.settle) {
+    if (o.at) {
+      base_ = *o.at;
+      given_ = true;
+    } else if (o.settle) {
       try {
         base_ = settledState(o);
       } catch (const StepStabilityCancelled&) {
@@ -145,7 +148,7 @@ class LinearisedRuns {
     if (dt == ownDt_) return;
     ownDt_ = dt;
     own_ = State{};
-    if (base_.pos.empty() || sim_.integrator().restsAtStaticEquilibrium()) return;
+    if (given_ || base_.pos.empty() || sim_.integrator().restsAtStaticEquilibrium()) return;
     const Stats stats = sim_.stats;
     const bool checked = sim_.blowUpCheckEnabled();
     sim_.setBlowUpCheck(false);
@@ -482,6 +485,7 @@ class LinearisedRuns {
   SolverSettings solverSettings_;  // the scene's own, put back when the runs end
   std::function<bool()> cancelled_;  // StepStabilityOptions::cancelled
   State base_;              // where the map is linearised: the settled state (empty: the initial one)
+  bool given_ = false;      // base_ is StepStabilityOptions::at: linearised there, as it is
   State own_;               // the method's own rest at ownDt_ where it is not base_ (empty: base_)
   double ownDt_ = -1.0;     // s, the dt own_ was settled for
   int steps_ = 0;

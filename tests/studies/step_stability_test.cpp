@@ -323,7 +323,8 @@ TEST(InflatedBall, ExplicitEulerFailsFirstOnTheWobbleTheAirAloneDamps) {
 // floor changes nothing (its spring, k / m = 3.2e5 /s^2, is softer than the springs' modes).
 // The shipped ball is predicted where its settling stops, still falling; dropped at 0.97 times
 // that, it is stopped in its first squash (the chart's measured limit, 0.963 times the
-// prediction), and at 0.97 times the limit on the floor it is not.
+// prediction), its message naming dt from the limit where it was stopped; at 0.97 times the
+// limit on the floor it is not stopped.
 TEST(BallOnTheFloor, TheContactsDamperLowersTheLimitWhereTheBallTouches) {
   const SceneDocument inFlight = inflatedBall(30, 3);
   SceneDocument onFloor = inFlight;
@@ -350,6 +351,9 @@ TEST(BallOnTheFloor, TheContactsDamperLowersTheLimitWhereTheBallTouches) {
   const std::vector<double> lowest = studies::observableSeries(fast, "lowest_point");
   ASSERT_FALSE(lowest.empty());
   EXPECT_LT(lowest.back(), 0.0) << "stopped at t = " << fast.times.back() << " s, not touching the floor: " << fast.failure;
+  // The message names dt as the cause, from the limit where the run was stopped.
+  EXPECT_NE(fast.failure.find("but not below its limit where the run was stopped"), std::string::npos) << fast.failure;
+  EXPECT_NE(fast.failure.find("Likely cause: dt, in a state stiffer than the rest"), std::string::npos) << fast.failure;
   const studies::RunResult slow = trialAt(dropped, "symplectic_euler", resting, 0.97);
   EXPECT_TRUE(slow.stable) << slow.failure;
 }
