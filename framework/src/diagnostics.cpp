@@ -197,16 +197,14 @@ bool anchorsMoved(const Simulation& sim, const State& last) {
   return false;
 }
 
-// The exact stability limit of the step that runs, leaving the state and counters as the
-// blow-up left them; NaN when it cannot be computed. One already computed (the viewer's, on a
-// copy of the scene) is taken as it is.
-double exactLimit(Simulation& sim) {
-  if (const std::optional<double> known = sim.knownStepLimit()) return *known;
+// The exact stability limit of the step that runs (stepStableDt with `options`), leaving the
+// state and counters as the blow-up left them; NaN when it cannot be computed.
+double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options) {
   const State blownUp = sim.state;
   const Stats stats = sim.stats;
   double limit = NAN;
   try {
-    limit = stepStableDt(sim);
+    limit = stepStableDt(sim, options);
   } catch (const std::exception&) {
     limit = NAN;
   }
@@ -216,24 +214,18 @@ double exactLimit(Simulation& sim) {
   return limit;
 }
 
-// The exact stability limit of the step linearised at `at` (a state the run passed through,
-// moving), leaving the state and counters as the blow-up left them; NaN when it cannot be
-// computed.
+// Where the scene settles. One already computed (the viewer's, on a copy of the scene) is
+// taken as it is.
+double exactLimit(Simulation& sim) {
+  if (const std::optional<double> known = sim.knownStepLimit()) return *known;
+  return limitLeavingTheState(sim, {});
+}
+
+// Linearised at `at`, a state the run passed through (moving).
 double limitAt(Simulation& sim, const State& at) {
-  const State blownUp = sim.state;
-  const Stats stats = sim.stats;
-  double limit = NAN;
-  try {
-    StepStabilityOptions o;
-    o.at = at;
-    limit = stepStableDt(sim, o);
-  } catch (const std::exception&) {
-    limit = NAN;
-  }
-  sim.state = blownUp;
-  sim.stats = stats;
-  sim.integrator().reset();
-  return limit;
+  StepStabilityOptions o;
+  o.at = at;
+  return limitLeavingTheState(sim, o);
 }
 
 }  // namespace
