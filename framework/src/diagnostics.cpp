@@ -375,9 +375,9 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     // Below the limit where the scene settles, the run may still have passed through a state
     // stiffer than its rest (the dropped ball's squash on the floor, whose contact damper
     // lowers symplectic Euler's limit from 1.78 to 1.43 ms): the limit where it was stopped
-    // says whether dt was the cause there.
-    // Not where the limit came from elsewhere (the viewer's worker): computing one here would
-    // hold the caller's thread (seconds on the 80-mass rope).
+    // says whether dt was the cause there. Not computed where the first limit came from
+    // elsewhere (the viewer's worker): it would hold the caller's thread (seconds on the
+    // 80-mass rope).
     const State& stopped = finiteState ? sim.state : last_;
     const bool computable = !sim.knownStepLimit() && stopped.pos.size() == sim.masses.size();
     const double here = computable ? limitAt(sim, stopped) : NAN;
