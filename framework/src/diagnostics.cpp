@@ -197,16 +197,14 @@ bool anchorsMoved(const Simulation& sim, const State& last) {
   return false;
 }
 
-// The exact stability limit of the step that runs, leaving the state and counters as the
-// blow-up left them; NaN when it cannot be computed. One already computed (the viewer's, on a
-// copy of the scene) is taken as it is.
-double exactLimit(Simulation& sim) {
-  if (const std::optional<double> known = sim.knownStepLimit()) return *known;
+// The exact stability limit of the step that runs (stepStableDt with `options`), leaving the
+// state and counters as the blow-up left them; NaN when it cannot be computed.
+double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options) {
   const State blownUp = sim.state;
   const Stats stats = sim.stats;
   double limit = NAN;
   try {
-    limit = stepStableDt(sim);
+    limit = stepStableDt(sim, options);
   } catch (const std::exception&) {
     limit = NAN;
   }
@@ -214,6 +212,20 @@ double exactLimit(Simulation& sim) {
   sim.stats = stats;
   sim.integrator().reset();
   return limit;
+}
+
+// Where the scene settles. One already computed (the viewer's, on a copy of the scene) is
+// taken as it is.
+double exactLimit(Simulation& sim) {
+  if (const std::optional<double> known = sim.knownStepLimit()) return *known;
+  return limitLeavingTheState(sim, {});
+}
+
+// Linearised at `at`, a state the run passed through (moving).
+double limitAt(Simulation& sim, const State& at) {
+  StepStabilityOptions o;
+  o.at = at;
+  return limitLeavingTheState(sim, o);
 }
 
 }  // namespace
@@ -360,9 +372,27 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
         << " on this scene (dampers, air, contacts and pressure included) is stable only below dt = " << limit
         << " s.";
   } else {
+    // Below the limit where the scene settles, the run may still have passed through a state
+    // stiffer than its rest (the dropped ball's squash on the floor, whose contact damper
+    // lowers symplectic Euler's limit from 1.78 to 1.43 ms): the limit where it was stopped
+    // says whether dt was the cause there. Not computed where the first limit came from
+    // elsewhere (the viewer's worker): it would hold the caller's thread (seconds on the
+    // 80-mass rope).
+    const State& stopped = finiteState ? sim.state : last_;
+    const bool computable = !sim.knownStepLimit() && stopped.pos.size() == sim.masses.size();
+    const double here = computable ? limitAt(sim, stopped) : NAN;
     msg << "dt = " << dt << " s is below the stability limit of " << name << " on this scene linearised where it settles ("
-        << limit << " s), so the step is not the likely cause: the scene left the state it was linearised at, where it settles (a "
-        << "contact, a stiffer configuration, a force that grows without bound).";
+        << limit << " s)";
+    if (std::isfinite(here) && dt > here) {
+      msg << ", but not below its limit where the run was stopped (t = " << stopped.time << " s: " << here
+          << " s). Likely cause: dt, in a state stiffer than the rest (a contact, a squash, a stretched "
+          << "configuration): try a dt below " << here << " s.";
+    } else {
+      if (std::isfinite(here)) msg << " and where the run was stopped (t = " << stopped.time << " s: " << here << " s)";
+      if (!computable) msg << " (its limit where the run was stopped is not computed here: `springlab sim` with this dt names it)";
+      msg << ", so the step is not the likely cause: look for a force that grows without bound, a contact or a "
+          << "constraint that adds energy.";
+    }
   }
   throw BlowUp(msg.str());
 }

@@ -86,6 +86,26 @@ TEST(BlowUpCheck, CanBeTurnedOffToWatchAMethodFail) {
   EXPECT_GT(sim.state.pos[0].norm(), 1e3);
 }
 
+// The viewer hands the blow-up check the limit its worker computed (setKnownStepLimit): the
+// message then computes no limit of its own on the viewer's thread, not even the one where
+// the run was stopped, and says so.
+TEST(BlowUpCheck, ALimitComputedElsewhereIsNotComputedAgainWhereTheRunStopped) {
+  AnchoredOscillators sim(1, 1.0, 1.0);  // w = 1 rad/s: symplectic Euler's limit is 2 s
+  sim.setKnownStepLimit(1000.0);        // as if the worker had found 1000 s
+  std::string what;
+  for (int n = 0; n < 1000 && what.empty(); ++n) {
+    try {
+      sim.operate(2.5);
+    } catch (const BlowUp& e) {
+      what = e.what();
+    }
+  }
+  ASSERT_FALSE(what.empty()) << "2.5 s is past the oscillator's limit of 2 s";
+  EXPECT_NE(what.find("below the stability limit"), std::string::npos) << what;
+  EXPECT_NE(what.find("(1000 s)"), std::string::npos) << what;
+  EXPECT_NE(what.find("not computed here"), std::string::npos) << what;
+}
+
 // Two masses with a spring list and a force made of named terms, one of which may be planted
 // non-finite: the blow-up check must name the mass and the term, not dt.
 class PlantedForces final : public Simulation {

@@ -97,8 +97,10 @@ class BlowUpCheck {
   // non-finite there, the message names the first such mass and the term that makes it
   // non-finite (the lab's forceTermNames(), each left out in turn; else springs, gravity, or
   // the lab's own forces), and does not blame dt. Otherwise it gives the exact stability
-  // limit of the step that runs (stepStableDt, at the scene's initial state: the blown-up
-  // state says nothing about the scene's stiffness) and compares dt with it. Computing the
+  // limit of the step that runs (stepStableDt, where the scene settles: a state blown up by
+  // then says nothing about the scene's stiffness) and compares dt with it; when dt is below
+  // it, also the limit linearised where the run was stopped (a squash, a contact the rest does
+  // not have), which may still be below dt. Computing the
   // limit resets the lab's own data (a dragged collider returns); the state and the counters
   // are put back as the blow-up left them. Remembers the state as the last finite one when
   // it passes.

@@ -34,6 +34,7 @@
 // symplectic Euler's w^2 dt^2 + 2 gamma dt < 4, the stability polynomials of RK4 and the
 // midpoint rule) is a test of this, not part of it.
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -55,6 +56,10 @@ struct StepStabilityOptions {
   double largestFactor = 1000.0; // stable up to this times the first guess: unbounded
   double smallestFactor = 1e-4;  // unstable down to this times the first guess: no stable dt
   bool settle = true;            // linearise at the settled state (false: at the initial state)
+  // Linearise at this state instead (positions, velocities and time as given; the blow-up
+  // message's: where the run was when it was stopped, a squash stiffer than the rest). The
+  // step is then linearised about a moving state, and no method's own rest is looked for.
+  std::optional<State> at;
   long settleEvaluations = 400000;  // settling budget: force evaluations x free coordinates
   long settleSteps = 4000;       // and at most this many steps (at least 100)
   // Asked before every run of the scene; true stops the computation with
