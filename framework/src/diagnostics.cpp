@@ -371,7 +371,8 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   const std::string name = integrator.name();
   const double limit = dt == limitDt_ ? limit_ : exactLimit(sim);
   if (std::isnan(limit)) {
-    msg << "The stability limit of " << name << " on this scene could not be computed; try a smaller dt.";
+    msg << "The stability limit of " << name << " on this scene could not be computed (where it settles, its step is "
+        << "not smooth: a contact switching on or off exactly there); try a smaller dt.";
   } else if (std::isinf(limit)) {
     msg << "Likely cause: not dt: " << name << " is stable at every dt on this scene linearised where it settles. Look "
         << "for a force that grows without bound, a contact or a constraint that adds energy.";

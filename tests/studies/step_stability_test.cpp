@@ -422,6 +422,28 @@ TEST(TrampolineLimit, PositionVerletAgreesWithSymplecticEulerItsTwin) {
   EXPECT_NEAR(verlet / twin, 1.0, 0.01) << "symplectic Euler " << twin << " s, position Verlet " << verlet << " s";
 }
 
+// ---- a step that is not smooth: explicit Euler on a ball resting on projected obstacles ----------
+// Projection contacts respond only to a mass strictly inside: a mass the settling left on the
+// surface at rest stays there in explicit Euler's first step (x' = x + dt v), and a perturbation
+// into the obstacle switches the contact's absorption on. The finite differences then measure a
+// jump, not a derivative: the "radius" scales with dt over the perturbation, and the limit read
+// from it was "unlimited". The oracle: the same radius with a perturbation 100 times smaller,
+// which a derivative would match. Symplectic Euler's first step moves the mass into the obstacle
+// in both runs (the contact acts in both), and its limit stays computable.
+TEST(BallUnderTheUsersSphere, ExplicitEulersStepIsNotSmoothOnItsContactsAndHasNoLimitThere) {
+  const SceneDocument ball = shippedScene("softbody_user_sphere.json");
+  LoadedScene loaded = allLabs().loadScene(ball);
+  loaded.sim->setIntegrator(allLabs().makeIntegrator("explicit_euler"));
+  StepStabilityOptions coarse, fine;
+  fine.relativePerturbation = coarse.relativePerturbation / 100.0;
+  const double r = stepSpectralRadius(*loaded.sim, 1e-4, coarse).radius;
+  const double rFine = stepSpectralRadius(*loaded.sim, 1e-4, fine).radius;
+  EXPECT_GT(rFine, 10.0 * r) << "a jump: the radius grows as the perturbation shrinks (" << r << ", " << rFine << ")";
+  EXPECT_TRUE(std::isnan(studies::sceneStepStableDt(allLabs(), ball, "explicit_euler")));
+  const double symplectic = studies::sceneStepStableDt(allLabs(), ball, "symplectic_euler");
+  EXPECT_TRUE(std::isfinite(symplectic) && symplectic > 0.0) << symplectic;
+}
+
 // ---- a light fabric: damping, not stiffness, sets the limit -----------------------------------
 TEST(FabricLimit, IsFarBelow2OverWmaxWhenTheStiffestModesAreOverdamped) {
   SceneDocument cloth = shippedScene("net_hanging.json");
