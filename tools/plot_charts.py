@@ -315,7 +315,12 @@ def stability(folder):
             ax.hlines(u, x - 0.35, x + 0.35, color="0.45", lw=1.2, linestyles="dashed")
         # Each column's note is centred on it, above both its marker and its bar, in a few
         # short lines: it stays within the column and never covers a marker or a bar.
-        if p == inf:
+        if p != p:
+            # NaN: the step is not smooth where the scene settles (a contact switching there),
+            # so it has no linearised limit; only the measured one is drawn.
+            text = "predicted: none (the\nstep is not smooth\nwhere it settles)"
+            above = shown
+        elif p == inf:
             # Stable at every dt the prediction tried: say what the bisection found.
             text = "predicted: no limit;\nnone found (the arrow:\nabove every trial dt)" if m == inf else f"predicted: no limit;\nfails at {m:.3g} s"
             above = shown

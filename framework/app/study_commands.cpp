@@ -88,9 +88,13 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
             << "predicted dt" << std::setw(16) << "measured dt" << "measured/predicted\n";
   for (const studies::CriticalDt& m : study.methods) {
     // predicted: the exact limit of the step (stepStableDt); "none": no stable dt;
-    // "unlimited": stable at every dt tried. c / w_max: the undamped rule, for comparison.
+    // "unlimited": stable at every dt tried; "not smooth": a contact switches where the scene
+    // settles, and the step has no linearisation there. c / w_max: the undamped rule, for comparison.
     const bool finite = std::isfinite(m.predicted) && m.predicted > 0.0;
-    const std::string predicted = finite ? std::to_string(m.predicted) : m.predicted > 0.0 ? "unlimited" : "none";
+    const std::string predicted = finite                   ? std::to_string(m.predicted)
+                                  : std::isnan(m.predicted) ? "not smooth"
+                                  : m.predicted > 0.0       ? "unlimited"
+                                                            : "none";
     const std::string undamped = m.undamped > 0.0 && std::isfinite(m.undamped) ? std::to_string(m.undamped) : "-";
     std::cout << std::setw(22) << m.integrator << std::setw(16) << undamped << std::setw(16) << predicted
               << std::setw(16) << m.measured << (finite ? std::to_string(m.measured / m.predicted) : "-") << "\n";

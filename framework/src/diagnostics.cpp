@@ -43,8 +43,8 @@ void BlowUpCheck::arm(const Simulation& sim) {
   for (const Mass& m : sim.masses) totalMass += m.m;
   energyScale_ = std::abs(e.kinetic) + std::abs(e.elastic) + std::abs(e.other) +
                  totalMass * (sim.gravitation.norm() * extent + 1.0);
-  passiveCeiling_ = e.total();
-  restartClimb(e.total());
+  passiveCeiling_ = e.total() - sim.sourceWork();
+  restartClimb(passiveCeiling_);
   last_ = sim.state;
   lastStep_ = sim.stats.steps;
 }
@@ -255,6 +255,17 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   if (why.empty()) {
     const Energies e = sim.energies();
     const double grown = e.kinetic + e.elastic + e.other;
+    // Passivity's energy: the total less what the sources whose work is counted put in (the
+    // wind's), so that a windy scene is held to it as well.
+    const double balance = e.total() - sim.sourceWork();
+    const bool counted = sim.sourceWork() != 0.0 || sim.suppliesEnergy();
+    std::string lessSources, noInput = " in a scene that puts no energy in (no wind, pump, moving anchor or drag)";
+    if (counted) {
+      std::ostringstream os;
+      os << " less the work of the scene's energy sources (" << sim.sourceWork() << " J, the wind's)";
+      lessSources = os.str();
+      noInput = " in a scene that puts energy in only through them (no pump, moving anchor or drag)";
+    }
     if (!std::isfinite(grown)) {
       // A non-finite energy of a finite state is a non-finite value, not a growth: the forces'
       // story below, not dt's.
@@ -268,24 +279,25 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       os << "runaway energy: kinetic + elastic + other potential energy reached " << grown << " J, over "
          << kRunawayFactor << " times the scene's energy scale of " << energyScale_ << " J";
       why = os.str();
-    } else if (sim.suppliesEnergy() || anchorsMoved(sim, last_)) {
-      // Energy comes in (wind, pump, a moving anchor): the ceiling follows it up, and a climb
-      // counts from here.
-      passiveCeiling_ = std::max(passiveCeiling_, e.total());
-      restartClimb(e.total());
+    } else if ((sim.suppliesEnergy() && !sim.lastStepWorkKnown()) || anchorsMoved(sim, last_)) {
+      // Energy comes in by an amount the scene cannot say (a pump, a moving anchor): the
+      // ceiling follows it up, and a climb counts from here. A source whose work the scene
+      // counts (the wind's, Simulation::sourcePower) is taken off the total energy instead,
+      // and the detectors below hold the rest to passivity.
+      passiveCeiling_ = std::max(passiveCeiling_, balance);
+      restartClimb(balance);
     } else if (!sim.integrator().restsAtStaticEquilibrium()) {
       // A method that rests away from the springs' equilibrium (XPBD from zero multipliers,
       // projective dynamics): the scene's spring energy is not its own, and it rests calmly
       // holding more of it (the 8 x 8 fabric under XPBD at 50 ms: +0.008 J above its flat
       // start, at rest). Neither passivity nor the climb applies.
-    } else if (e.total() > passiveCeiling_ + passivityAllowance() && beyondLimitOrMeasured(sim, dt)) {
+    } else if (balance > passiveCeiling_ + passivityAllowance() && beyondLimitOrMeasured(sim, dt)) {
       // Detector 3, passivity: nothing puts energy in, yet the total energy rose above the
       // ceiling by more than the integrator's own oscillation.
       std::ostringstream os;
-      os << "passivity: the total energy rose to " << e.total() << " J, " << e.total() - passiveCeiling_
+      os << "passivity: the total energy" << lessSources << " rose to " << balance << " J, " << balance - passiveCeiling_
          << " J above the most the scene held while energy came in (" << passiveCeiling_
-         << " J), in a scene that puts no energy in (no wind, pump, moving anchor or drag); the integrator's own "
-            "energy oscillation is allowed "
+         << " J)," << noInput << "; the integrator's own energy oscillation is allowed "
          << passivityAllowance() << " J ("
          << (energySwing_ >= 0.0 ? "64 times its swing at half the stability limit"
                                  : "half the energy scale, no swing was measured, and dt is past the step's limit")
@@ -294,7 +306,7 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     } else {
       // Detector 4, a climb back from the low (see kClimbFraction): the fast swing first
       // takes this step's energy in, so that a jump within the window is a swing, not a climb.
-      const double now = e.total();
+      const double now = balance;
       if (recentCount_ > 0) {
         double windowLow = now;
         for (int k = 0; k < recentCount_; ++k) windowLow = std::min(windowLow, recent_[static_cast<std::size_t>(k)]);
@@ -306,10 +318,9 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       low_ = std::min(low_, now);
       if (now - low_ > climbAllowance() && beyondLimitOrMeasured(sim, dt)) {
         std::ostringstream os;
-        os << "passivity: the total energy climbed back to " << now << " J, " << now - low_
-           << " J above its lowest since energy last came in (" << low_
-           << " J), in a scene that puts no energy in (no wind, pump, moving anchor or drag): a stable step's energy "
-              "swings but does not win back what the scene lost (allowed "
+        os << "passivity: the total energy" << lessSources << " climbed back to " << now << " J, " << now - low_
+           << " J above its lowest since energy last came in (" << low_ << " J)," << noInput
+           << ": a stable step's energy swings but does not win back what the scene lost (allowed "
            << climbAllowance() << " J, the largest of the integrator's own oscillation " << passivityAllowance()
            << " J, twice its largest rise within " << kFastWindow << " steps " << kFastSwingMargin * fastSwing_
            << " J, and " << 100.0 * kClimbFraction << " % of the " << passiveCeiling_ - low_ << " J the scene lost)";
@@ -360,7 +371,8 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   const std::string name = integrator.name();
   const double limit = dt == limitDt_ ? limit_ : exactLimit(sim);
   if (std::isnan(limit)) {
-    msg << "The stability limit of " << name << " on this scene could not be computed; try a smaller dt.";
+    msg << "The stability limit of " << name << " on this scene could not be computed (where it settles, its step is "
+        << "not smooth: a contact switching on or off exactly there); try a smaller dt.";
   } else if (std::isinf(limit)) {
     msg << "Likely cause: not dt: " << name << " is stable at every dt on this scene linearised where it settles. Look "
         << "for a force that grows without bound, a contact or a constraint that adds energy.";

@@ -27,7 +27,18 @@ void Simulation::simulate(double dt) {
   const PhaseProfile::Scope step(profile, Phase::kOther);
   // A state set by hand since the last step (a test giving the masses velocities, a script
   // moving them) is energy the user put in, not the step's: the check starts from it.
-  if (blowUpCheckEnabled_ && blowUpCheck_.changedSinceLastCheck(*this)) blowUpCheck_.admitUserEnergy(*this);
+  if (blowUpCheckEnabled_ && blowUpCheck_.changedSinceLastCheck(*this)) {
+    blowUpCheck_.admitUserEnergy(*this);
+    sourcePowerAfter_.reset();
+  }
+  // The energy sources' work over the step (the wind's): the trapezoid rule on their power at
+  // its two ends, the start's kept from the last step's end.
+  const bool sourced = suppliesEnergy();
+  std::optional<double> powerBefore;
+  if (sourced) {
+    powerBefore = sourcePowerAfter_ && sourcePowerAfter_->first == stats.steps ? std::optional(sourcePowerAfter_->second)
+                                                                               : sourcePower(state);
+  }
   {
     const PhaseProfile::Scope integration(profile, Phase::kIntegration);
     integrator_->step(*this, dt);
@@ -42,6 +53,15 @@ void Simulation::simulate(double dt) {
     state.pos[*grabbed_] = grabTarget_;
     state.vel[*grabbed_].setZero();
     blowUpCheck_.admitUserEnergy(*this);
+  }
+
+  lastStepWorkKnown_ = true;
+  sourcePowerAfter_.reset();
+  if (sourced) {
+    const std::optional<double> powerAfter = sourcePower(state);
+    lastStepWorkKnown_ = powerBefore && powerAfter;
+    if (lastStepWorkKnown_) sourceWork_ += 0.5 * (*powerBefore + *powerAfter) * dt;
+    if (powerAfter) sourcePowerAfter_ = std::pair(stats.steps, *powerAfter);
   }
 
   if (blowUpCheckEnabled_) blowUpCheck_.check(*this, dt);
@@ -108,6 +128,9 @@ void Simulation::reset() {
   stats = Stats{};
   grabbed_.reset();
   integrator_->reset();
+  sourceWork_ = 0.0;
+  lastStepWorkKnown_ = true;
+  sourcePowerAfter_.reset();
   onReset();
   blowUpCheck_.arm(*this);
 }
@@ -175,6 +198,7 @@ void Simulation::editModel(const std::function<void(Simulation&)>& edit) {
   // The integrator's history (Verlet's previous positions) belongs to the old model, and
   // the edited model may hold more energy than the old one: neither is a blow-up.
   integrator_->reset();
+  sourcePowerAfter_.reset();  // the old model's
   blowUpCheck_.admitUserEnergy(*this);
 }
 

@@ -4,7 +4,11 @@
 // raise its power v . f; the check must name the term that breaks this, and only that one.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <memory>
+
 #include <springlab/energy_source.hpp>
+#include <springlab/rk4.hpp>
 #include <springlab/simulation.hpp>
 
 namespace springlab {
@@ -82,3 +86,72 @@ TEST(EnergySource, SaysNothingAtRestAndLeavesTheStatisticsAlone) {
 
 }  // namespace
 }  // namespace springlab
+
+namespace springlab {
+namespace {
+
+// ---- the sources' work (Simulation::sourcePower, sourceWork) ------------------------------------
+// Free masses m, released at rest in a stream of air w: f = c (w - v), the only force, and the
+// source the scene counts. Each mass then moves as v(t) = w (1 - exp(-c t / m)), and since
+// nothing else acts, the work of the stream is all the kinetic energy there is: the energy
+// balance (total less the sources' work) stays at its start. The passivity detector holds a
+// windy scene to that balance.
+class MassesCarriedByAStream final : public Simulation {
+ public:
+  MassesCarriedByAStream(double c, Vec3 w) : Simulation(3), drag(c), air(w) {
+    for (int i = 0; i < 3; ++i) {
+      masses.push_back(Mass{0.5 + 0.25 * i, false});
+      state.pos.push_back(Vec3(0.1 * i, 0.0, 0.0));
+      state.vel.push_back(Vec3::Zero());
+    }
+    gravitation = Vec3::Zero();
+    markInitialState();
+  }
+  std::string kind() const override { return "stream"; }
+  bool suppliesEnergy() const override { return true; }
+  std::optional<double> sourcePower(const State& s) const override {
+    double p = 0.0;
+    for (int i = 0; i < numOfMasses(); ++i) p += (drag * (air - s.vel[i])).dot(s.vel[i]);
+    return p;
+  }
+
+ protected:
+  void accumulateForces(const State& s, std::vector<Vec3>& f) override {
+    for (int i = 0; i < numOfMasses(); ++i) f[i] += drag * (air - s.vel[i]);
+  }
+
+ private:
+  double drag;
+  Vec3 air;
+};
+
+TEST(SourceWork, TheStreamsWorkIsAllTheKineticEnergyOfTheMassesItCarries) {
+  const Vec3 w(1.0, -2.0, 0.5);
+  const double c = 0.8, dt = 1e-3;
+  MassesCarriedByAStream sim(c, w);
+  sim.setIntegrator(std::make_unique<RungeKutta4>());
+  for (int k = 0; k < 2000; ++k) sim.operate(dt);  // t = 2 s: 2 to 3 time constants m / c
+  double exact = 0.0;  // the closed form of the kinetic energy, mass by mass
+  for (const Mass& m : sim.masses) {
+    exact += 0.5 * m.m * w.squaredNorm() * std::pow(1.0 - std::exp(-c * sim.state.time / m.m), 2.0);
+  }
+  EXPECT_NEAR(sim.energies().kinetic / exact, 1.0, 1e-9);
+  // The trapezoid rule on the power: second order in dt, 1e-7 of the energy here.
+  EXPECT_NEAR(sim.sourceWork() / exact, 1.0, 1e-6) << "work " << sim.sourceWork() << " J, kinetic " << exact << " J";
+  EXPECT_NEAR(sim.energyBalance(), 0.0, 1e-6 * exact);
+  EXPECT_TRUE(sim.lastStepWorkKnown());
+  sim.reset();
+  EXPECT_EQ(sim.sourceWork(), 0.0) << "a reset forgets the work";
+}
+
+TEST(SourceWork, APassiveScenesSourcesDoNoWork) {
+  MassesInAStream sim(0.4, Vec3(0.0, 0.0, -2.0));  // does not say it supplies energy
+  sim.setIntegrator(std::make_unique<RungeKutta4>());
+  for (int k = 0; k < 100; ++k) sim.operate(1e-3);
+  EXPECT_EQ(sim.sourceWork(), 0.0);
+  EXPECT_EQ(sim.energyBalance(), sim.energies().total());
+}
+
+}  // namespace
+}  // namespace springlab
+

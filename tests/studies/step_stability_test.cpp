@@ -371,6 +371,79 @@ TEST(ClothAtTheLimit, SurvivesJustBelowAndIsStoppedJustAbove) {
   expectStableBelowAndReportedAbove(cloth, "symplectic_euler");
 }
 
+// ---- wind: a scene that puts energy in ----------------------------------------------------------
+// The flag as shipped (8 m/s relative wind, stretch limiting on). Past symplectic Euler's limit
+// its springs flip and the flag turns to noise held together by the stretch limit, at bounded
+// energy (63 J at 3 times the limit, 0.13 J when stable). Passivity did not apply while the
+// wind blew, and the chart measured no limit at all; it now counts the wind's work
+// (Simulation::sourcePower) and holds the rest of the energy to passivity.
+TEST(FlagInTheWind, SymplecticEulerPastItsLimitIsStoppedThoughTheWindPutsEnergyIn) {
+  const SceneDocument flag = shippedScene("net_flag.json");
+  expectStableBelowAndReportedAbove(flag, "symplectic_euler");
+  const double predicted = studies::sceneStepStableDt(allLabs(), flag, "symplectic_euler");
+  const studies::RunResult above = trialAt(flag, "symplectic_euler", predicted, 1.03);
+  EXPECT_NE(above.failure.find("less the work of the scene's energy sources"), std::string::npos) << above.failure;
+}
+
+// The wind's work, as the net counts it, against a closed form: the flag unpinned, without
+// gravity, in a wind along its normal. Its masses (areal density times a third of the area
+// around each) and the wind's force (the same area) give every mass the same acceleration
+// (drag / density) (w - v): the flag flies off flat, its springs untouched, at
+// v(t) = w (1 - exp(-t drag / density)). The wind's work is then all its kinetic energy.
+TEST(FlagInTheWind, TheWindsWorkIsTheKineticEnergyOfAFlagItCarriesOff) {
+  SceneDocument flag = shippedScene("net_flag.json");
+  for (const char* s : {"net.pinned=[]", "gravity=[0,0,0]", "net.wind.direction=[0,0,1]"}) flag.set(s);
+  LoadedScene loaded = allLabs().loadScene(flag);
+  Simulation& sim = *loaded.sim;
+  sim.setIntegrator(allLabs().makeIntegrator("rk4"));
+  const double dt = 2.5e-4;  // below RK4's limit on the flag's springs (0.9 ms): round-off stays put
+  for (int k = 0; k < 2000; ++k) sim.operate(dt);
+  const auto& net = flag.json.at("net");
+  const double density = net.at("areal_density").get<double>(), drag = net.at("wind").at("drag").get<double>();
+  const double w = net.at("wind").at("strength").get<double>();
+  const double mass = density * net.at("width").get<double>() * net.at("height").get<double>();
+  const double v = w * (1.0 - std::exp(-sim.state.time * drag / density));
+  const double kinetic = 0.5 * mass * v * v;
+  EXPECT_NEAR(sim.energies().kinetic / kinetic, 1.0, 1e-6) << "closed form " << kinetic << " J";
+  EXPECT_NEAR(sim.sourceWork() / kinetic, 1.0, 1e-6) << "the wind's work " << sim.sourceWork() << " J";
+  EXPECT_NEAR(sim.energyBalance(), 0.0, 1e-6 * kinetic) << "the total energy less the wind's work";
+}
+
+// ---- a radius that does not rise with dt: position Verlet on the trampoline --------------------
+// Position Verlet and symplectic Euler are one map on positions and velocities (x' = 2 x - x_prev
+// + h^2 a with v = (x - x_prev) / h), so their limits agree; symplectic Euler's is probed on its
+// own step, position Verlet's through its history (two-step runs), whose Ritz estimate on the
+// trampoline (pinned edges, stretch limit, wind) dips below 1 again at the first guess 2 / w_max
+// (0.93 at 2.2 ms, 5.3 at 1 ms). Growing the bracket from there found 4.6 ms.
+TEST(TrampolineLimit, PositionVerletAgreesWithSymplecticEulerItsTwin) {
+  const SceneDocument trampoline = shippedScene("net_trampoline.json");
+  const double twin = studies::sceneStepStableDt(allLabs(), trampoline, "symplectic_euler");
+  const double verlet = studies::sceneStepStableDt(allLabs(), trampoline, "position_verlet");
+  EXPECT_NEAR(verlet / twin, 1.0, 0.01) << "symplectic Euler " << twin << " s, position Verlet " << verlet << " s";
+}
+
+// ---- a step that is not smooth: explicit Euler on a ball resting on projected obstacles ----------
+// Projection contacts respond only to a mass strictly inside: a mass the settling left on the
+// surface at rest stays there in explicit Euler's first step (x' = x + dt v), and a perturbation
+// into the obstacle switches the contact's absorption on. The finite differences then measure a
+// jump, not a derivative: the "radius" scales with dt over the perturbation, and the limit read
+// from it was "unlimited". The oracle: the same radius with a perturbation 100 times smaller,
+// which a derivative would match. Symplectic Euler's first step moves the mass into the obstacle
+// in both runs (the contact acts in both), and its limit stays computable.
+TEST(BallUnderTheUsersSphere, ExplicitEulersStepIsNotSmoothOnItsContactsAndHasNoLimitThere) {
+  const SceneDocument ball = shippedScene("softbody_user_sphere.json");
+  LoadedScene loaded = allLabs().loadScene(ball);
+  loaded.sim->setIntegrator(allLabs().makeIntegrator("explicit_euler"));
+  StepStabilityOptions coarse, fine;
+  fine.relativePerturbation = coarse.relativePerturbation / 100.0;
+  const double r = stepSpectralRadius(*loaded.sim, 1e-4, coarse).radius;
+  const double rFine = stepSpectralRadius(*loaded.sim, 1e-4, fine).radius;
+  EXPECT_GT(rFine, 10.0 * r) << "a jump: the radius grows as the perturbation shrinks (" << r << ", " << rFine << ")";
+  EXPECT_TRUE(std::isnan(studies::sceneStepStableDt(allLabs(), ball, "explicit_euler")));
+  const double symplectic = studies::sceneStepStableDt(allLabs(), ball, "symplectic_euler");
+  EXPECT_TRUE(std::isfinite(symplectic) && symplectic > 0.0) << symplectic;
+}
+
 // ---- a light fabric: damping, not stiffness, sets the limit -----------------------------------
 TEST(FabricLimit, IsFarBelow2OverWmaxWhenTheStiffestModesAreOverdamped) {
   SceneDocument cloth = shippedScene("net_hanging.json");

@@ -38,7 +38,10 @@ class BlowUp : public std::runtime_error {
 // could ever hold (its initial energy plus the work gravity can do: the runaway factor); and
 // passivity: a scene that puts no energy in (no wind, pump, moving pinned mass or user drag)
 // cannot gain energy, so a total energy (gravity included) above the highest it had while
-// energy came in, by more than the integrator's own energy oscillation, is a blow-up. Past
+// energy came in, by more than the integrator's own energy oscillation, is a blow-up. A
+// source whose work the scene counts (the wind's: Simulation::sourcePower, sourceWork) is
+// taken off the total, so a windy scene is held to passivity as well; the pump's and a moving
+// anchor's are not counted, and the ceiling follows them up. Past
 // the stability limit a nonlinear scene often saturates instead of overflowing (springs flip,
 // the state turns to noise at a bounded energy): passivity catches that. And the climb:
 // passivity counted from the lowest energy since energy last came in, for an instability that

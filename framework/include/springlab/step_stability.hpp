@@ -81,7 +81,9 @@ StepSpectrum stepSpectralRadius(Simulation& sim, double dt, const StepStabilityO
 
 // The largest dt with spectral radius <= 1 + slack. `firstGuess` starts the bracket (the
 // undamped c / w_max, or 2 / w_max); +inf when stable up to largestFactor x firstGuess, 0
-// when unstable down to smallestFactor x firstGuess.
+// when unstable down to smallestFactor x firstGuess; NaN when the step is not smooth at the
+// state (a contact switching exactly there: its finite differences change with the
+// perturbation's size), where a linearised limit does not exist.
 struct StepStabilityLimit {
   double dt = 0.0;     // s
   int evaluations = 0; // spectral radii computed

@@ -55,6 +55,18 @@ Penetration SoftBody::penetration(const Vec3& x, const Obstacle& o) const {
   return {};
 }
 
+std::optional<double> SoftBody::sourcePower(const State& s) const {
+  if (p_.gas > 0.0 && s.time < p_.inflationTime) return std::nullopt;
+  if (!(p_.windDrag > 0.0 && p_.wind.squaredNorm() > 0.0)) return 0.0;
+  std::vector<Vec3> f(s.pos.size(), Vec3::Zero());
+  addWindForces(s.pos, s.vel, triangles, p_.mesh.segments, p_.wind, p_.windDrag, f);
+  double power = 0.0;
+  for (int i = 0; i < numOfMasses(); ++i) {
+    if (inverseMass(i) != 0.0) power += f[i].dot(s.vel[i]);
+  }
+  return power;
+}
+
 std::vector<std::string> SoftBody::forceTermNames() const {
   return {"spring forces (exercise 3.1, addSpringForces)", "gravity and air friction",
           "gas pressure (exercises 3.3 to 3.5: the volume, addPressureForces, the gas pumped in)",

@@ -40,6 +40,8 @@ class Net final : public Simulation {
   std::vector<std::string> forceTermNames() const override;
   // A wind of nonzero speed (or strength) works on the cloth; a still air only drags.
   bool suppliesEnergy() const override { return settings.wind.strength > 0.0; }
+  // The wind's power v . F over every mass (its whole force: the push and the drag).
+  std::optional<double> sourcePower(const State& s) const override;
 
   // Front end.
   std::string kind() const override { return "net"; }

@@ -70,6 +70,9 @@ class SoftBody final : public Simulation {
   bool suppliesEnergy() const override {
     return (p_.windDrag > 0.0 && p_.wind.squaredNorm() > 0.0) || (p_.gas > 0.0 && state.time < p_.inflationTime);
   }
+  // The wind's power v . F over every mass; nothing while the pump inflates (its work is not
+  // a force's).
+  std::optional<double> sourcePower(const State& s) const override;
 
   // Front end.
   std::string kind() const override { return "soft body"; }
