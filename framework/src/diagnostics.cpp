@@ -258,14 +258,14 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     // Passivity's energy: the total less what the sources whose work is counted put in (the
     // wind's), so that a windy scene is held to it as well.
     const double balance = e.total() - sim.sourceWork();
+    // The messages' words for it, written only when a detector fires (a step allocates nothing).
     const bool counted = sim.sourceWork() != 0.0 || sim.suppliesEnergy();
-    std::string lessSources, noInput = " in a scene that puts no energy in (no wind, pump, moving anchor or drag)";
-    if (counted) {
-      std::ostringstream os;
-      os << " less the work of the scene's energy sources (" << sim.sourceWork() << " J, the wind's)";
-      lessSources = os.str();
-      noInput = " in a scene that puts energy in only through them (no pump, moving anchor or drag)";
-    }
+    auto lessSources = [&](std::ostream& os) -> std::ostream& {
+      if (counted) os << " less the work of the scene's energy sources (" << sim.sourceWork() << " J, the wind's)";
+      return os;
+    };
+    const char* noInput = counted ? " in a scene that puts energy in only through them (no pump, moving anchor or drag)"
+                                  : " in a scene that puts no energy in (no wind, pump, moving anchor or drag)";
     if (!std::isfinite(grown)) {
       // A non-finite energy of a finite state is a non-finite value, not a growth: the forces'
       // story below, not dt's.
@@ -295,7 +295,8 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       // Detector 3, passivity: nothing puts energy in, yet the total energy rose above the
       // ceiling by more than the integrator's own oscillation.
       std::ostringstream os;
-      os << "passivity: the total energy" << lessSources << " rose to " << balance << " J, " << balance - passiveCeiling_
+      os << "passivity: the total energy";
+      lessSources(os) << " rose to " << balance << " J, " << balance - passiveCeiling_
          << " J above the most the scene held while energy came in (" << passiveCeiling_
          << " J)," << noInput << "; the integrator's own energy oscillation is allowed "
          << passivityAllowance() << " J ("
@@ -318,7 +319,8 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       low_ = std::min(low_, now);
       if (now - low_ > climbAllowance() && beyondLimitOrMeasured(sim, dt)) {
         std::ostringstream os;
-        os << "passivity: the total energy" << lessSources << " climbed back to " << now << " J, " << now - low_
+        os << "passivity: the total energy";
+        lessSources(os) << " climbed back to " << now << " J, " << now - low_
            << " J above its lowest since energy last came in (" << low_ << " J)," << noInput
            << ": a stable step's energy swings but does not win back what the scene lost (allowed "
            << climbAllowance() << " J, the largest of the integrator's own oscillation " << passivityAllowance()

@@ -90,13 +90,11 @@ void Net::accumulateForces(const State& s, std::vector<Vec3>& f) {
 
 std::optional<double> Net::sourcePower(const State& s) const {
   if (!suppliesEnergy() || triangles.empty()) return 0.0;
-  std::vector<Vec3> normals;
-  std::vector<double> areas;
-  vertexNormals(s.pos, triangles, normals, areas);
+  vertexNormals(s.pos, triangles, sourceNormals_, sourceAreas_);
   double power = 0.0;
   for (int i = 0; i < numOfMasses(); ++i) {
     if (inverseMass(i) == 0.0) continue;  // a pinned or held mass: the wind does no work on it
-    power += windForce(settings.wind, s.vel[i], normals[i], areas[i]).dot(s.vel[i]);
+    power += windForce(settings.wind, s.vel[i], sourceNormals_[i], sourceAreas_[i]).dot(s.vel[i]);
   }
   return power;
 }

@@ -58,7 +58,8 @@ Penetration SoftBody::penetration(const Vec3& x, const Obstacle& o) const {
 std::optional<double> SoftBody::sourcePower(const State& s) const {
   if (p_.gas > 0.0 && s.time < p_.inflationTime) return std::nullopt;
   if (!(p_.windDrag > 0.0 && p_.wind.squaredNorm() > 0.0)) return 0.0;
-  std::vector<Vec3> f(s.pos.size(), Vec3::Zero());
+  std::vector<Vec3>& f = sourceForces_;  // scratch: a step allocates nothing
+  f.assign(s.pos.size(), Vec3::Zero());
   addWindForces(s.pos, s.vel, triangles, p_.mesh.segments, p_.wind, p_.windDrag, f);
   double power = 0.0;
   for (int i = 0; i < numOfMasses(); ++i) {

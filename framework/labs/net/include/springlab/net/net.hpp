@@ -77,6 +77,8 @@ class Net final : public Simulation {
   std::unique_ptr<FastSpringForces> fastSprings_;  // the springs' forces and Jacobians, faster
   std::vector<Vec3> normals_;                      // [n] scratch for the wind
   std::vector<double> areas_;                      // [n] m^2
+  mutable std::vector<Vec3> sourceNormals_;        // [n] scratch for sourcePower (a step allocates nothing)
+  mutable std::vector<double> sourceAreas_;        // [n] m^2
   std::vector<double> inverseMass_;                // [n] scratch for stretch limiting
   Tethers tethers_;                                // stretch limit: distances from the pins
   Vec3 pinnedCentre_ = Vec3::Zero();               // m, centre of the pinned masses at the start

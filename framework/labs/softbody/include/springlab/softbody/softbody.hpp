@@ -106,6 +106,7 @@ class SoftBody final : public Simulation {
   double restVolume_ = 0.0;      // m^3, of the rest shape
   std::vector<Obstacle> initialObstacles_;
   std::vector<ColliderDrag> drags_;  // [obstacles] where the user holds each one
+  mutable std::vector<Vec3> sourceForces_;  // [n] scratch for sourcePower (a step allocates nothing)
 };
 
 // Registers the "softbody" scene kind.
