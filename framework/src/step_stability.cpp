@@ -767,8 +767,6 @@ StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const 
       out.steps = runs.steps();
       return out;
     }
-  }
-  if (std::isfinite(rh) && rh > 1.0 + o.radiusSlack) {
     const double rh2 = radiusOf(runs, 0.5 * h, o).radius;
     ++out.evaluations;
     if (std::isfinite(rh2)) growth = std::max(0.0, (4.0 * (rh2 - 1.0) - (rh - 1.0)) / h);
