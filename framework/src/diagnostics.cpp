@@ -202,6 +202,7 @@ bool anchorsMoved(const Simulation& sim, const State& last) {
 double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options) {
   const State blownUp = sim.state;
   const Stats stats = sim.stats;
+  const Simulation::EnergyAccounts accounts = sim.energyAccounts();
   double limit = NAN;
   try {
     limit = stepStableDt(sim, options);
@@ -210,6 +211,7 @@ double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options
   }
   sim.state = blownUp;
   sim.stats = stats;
+  sim.restoreEnergyAccounts(accounts);
   sim.integrator().reset();
   return limit;
 }

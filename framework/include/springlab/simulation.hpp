@@ -180,6 +180,19 @@ class Simulation {
   // instability the corrections cap is seen in it: past its limit a free corner of a cloth
   // lying on a slope jitters at 9 m/s, held by the stretch limit, while the total energy falls.
   double correctionWork() const { return correctionWork_; }
+  // The sources' and the corrections' work so far, to be put back after a computation that
+  // resets the scene in the middle of a run (the blow-up check's limit): without them the
+  // run's energy balance would jump by all the work done.
+  struct EnergyAccounts {
+    double sourceWork = 0.0, correctionWork = 0.0;
+  };
+  EnergyAccounts energyAccounts() const { return {sourceWork_, correctionWork_}; }
+  void restoreEnergyAccounts(const EnergyAccounts& a) {
+    sourceWork_ = a.sourceWork;
+    correctionWork_ = a.correctionWork;
+    sourcePowerAfter_.reset();
+    stepEnd_.reset();
+  }
   // energies() at the end of the last step, kept when counting the corrections computed them
   // (the blow-up check's, right after the step; the state must not have changed since).
   Energies stepEndEnergies() const { return stepEnd_ ? *stepEnd_ : energies(); }
