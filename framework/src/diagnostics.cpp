@@ -43,7 +43,7 @@ void BlowUpCheck::arm(const Simulation& sim) {
   for (const Mass& m : sim.masses) totalMass += m.m;
   energyScale_ = std::abs(e.kinetic) + std::abs(e.elastic) + std::abs(e.other) +
                  totalMass * (sim.gravitation.norm() * extent + 1.0);
-  passiveCeiling_ = e.total() - sim.sourceWork();
+  passiveCeiling_ = e.total() - sim.sourceWork() - sim.correctionWork();
   restartClimb(passiveCeiling_);
   last_ = sim.state;
   lastStep_ = sim.stats.steps;
@@ -202,6 +202,7 @@ bool anchorsMoved(const Simulation& sim, const State& last) {
 double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options) {
   const State blownUp = sim.state;
   const Stats stats = sim.stats;
+  const Simulation::EnergyAccounts accounts = sim.energyAccounts();
   double limit = NAN;
   try {
     limit = stepStableDt(sim, options);
@@ -210,6 +211,7 @@ double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options
   }
   sim.state = blownUp;
   sim.stats = stats;
+  sim.restoreEnergyAccounts(accounts);
   sim.integrator().reset();
   return limit;
 }
@@ -253,15 +255,21 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   // ground, gas) far beyond anything the scene can hold. The lab's potentials count because a
   // source such as a gas pays for the elastic energy it stores with its own (-nRT ln V falls).
   if (why.empty()) {
-    const Energies e = sim.energies();
+    const Energies e = sim.stepEndEnergies();
     const double grown = e.kinetic + e.elastic + e.other;
     // Passivity's energy: the total less what the sources whose work is counted put in (the
-    // wind's), so that a windy scene is held to it as well.
-    const double balance = e.total() - sim.sourceWork();
+    // wind's), so that a windy scene is held to it as well, and less what the corrections
+    // after the step added or took (contacts, stretch limiting), so that an instability they
+    // cap is held to it too: what is left is the step's own.
+    const double balance = e.total() - sim.sourceWork() - sim.correctionWork();
     // The messages' words for it, written only when a detector fires (a step allocates nothing).
     const bool counted = sim.sourceWork() != 0.0 || sim.suppliesEnergy();
     auto lessSources = [&](std::ostream& os) -> std::ostream& {
       if (counted) os << " less the work of the scene's energy sources (" << sim.sourceWork() << " J, the wind's)";
+      if (sim.correctionWork() != 0.0) {
+        os << (counted ? " and" : " less") << " that of its corrections after each step (" << sim.correctionWork()
+           << " J: contacts, stretch limiting, moving anchors)";
+      }
       return os;
     };
     const char* noInput = counted ? " in a scene that puts energy in only through them (no pump, moving anchor or drag)"

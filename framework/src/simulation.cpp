@@ -1,6 +1,7 @@
 #include "springlab/simulation.hpp"
 
 #include <stdexcept>
+#include <utility>
 
 #include "springlab/symplectic_euler.hpp"
 
@@ -44,7 +45,24 @@ void Simulation::simulate(double dt) {
     integrator_->step(*this, dt);
   }
   ++stats.steps;
+  // The corrections' work: the energy before and after afterStep, where it changed the state
+  // (the integrator's result kept in buffers that outlive the step: no allocation).
+  const bool tracking = blowUpCheckEnabled_ || trackCorrections_;
+  if (tracking) {
+    integrated_.pos = state.pos;
+    integrated_.vel = state.vel;
+  }
   afterStep(dt);
+  stepEnd_.reset();
+  if (tracking && (state.pos != integrated_.pos || state.vel != integrated_.vel)) {
+    stepEnd_ = energies();  // the blow-up check's too, unless a drag moves a mass below
+    std::swap(state.pos, integrated_.pos);
+    std::swap(state.vel, integrated_.vel);
+    const double integrated = energies().total();
+    std::swap(state.pos, integrated_.pos);
+    std::swap(state.vel, integrated_.vel);
+    correctionWork_ += stepEnd_->total() - integrated;
+  }
 
   // A mass the user drags is held at the mouse, at rest: the mouse may jump by a whole
   // frame in one substep, and that jump must not turn into a velocity.
@@ -52,6 +70,7 @@ void Simulation::simulate(double dt) {
   if (grabbed_) {
     state.pos[*grabbed_] = grabTarget_;
     state.vel[*grabbed_].setZero();
+    stepEnd_.reset();
     blowUpCheck_.admitUserEnergy(*this);
   }
 
@@ -131,6 +150,8 @@ void Simulation::reset() {
   sourceWork_ = 0.0;
   lastStepWorkKnown_ = true;
   sourcePowerAfter_.reset();
+  correctionWork_ = 0.0;
+  stepEnd_.reset();
   onReset();
   blowUpCheck_.arm(*this);
 }
@@ -199,6 +220,7 @@ void Simulation::editModel(const std::function<void(Simulation&)>& edit) {
   // the edited model may hold more energy than the old one: neither is a blow-up.
   integrator_->reset();
   sourcePowerAfter_.reset();  // the old model's
+  stepEnd_.reset();
   blowUpCheck_.admitUserEnergy(*this);
 }
 

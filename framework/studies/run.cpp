@@ -32,8 +32,8 @@ void sample(const Simulation& sim, bool keepPositions, RunResult& out) {
 
 namespace {
 
-// The integrator's energy swing: the largest rise of the total energy (less the wind's work,
-// as the passivity detector counts it) above its start in a
+// The integrator's energy swing: the largest rise of the total energy (less the wind's and the
+// corrections' work, as the passivity detector counts it) above its start in a
 // run of the scene at dt (half the stability limit), over the run's simulated time but at
 // most 4000 steps; -1 when that run goes non-finite (nothing measured).
 double energySwing(const Registry& registry, const RunSpec& spec, double dt) {
@@ -42,6 +42,7 @@ double energySwing(const Registry& registry, const RunSpec& spec, double dt) {
   sim.setIntegrator(registry.makeIntegrator(spec.integrator));
   scaleSprings(sim, spec.stiffnessScale);
   sim.setBlowUpCheck(false);
+  sim.trackCorrectionWork(true);  // as the check counts it
   const double duration = spec.dt * static_cast<double>(spec.stepsPerSample) * spec.samples;
   const long steps = std::clamp(std::lround(duration / dt), 1L, 4000L);
   const double start = sim.energyBalance();

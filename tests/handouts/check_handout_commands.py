@@ -50,6 +50,9 @@ EXPECTED_EXIT = [
      "section 5 of handout 01: symplectic Euler past the rope's limit, stopped by passivity (exit 4)"),
     (r"^\./springlab sim scenes/rope\.json --set rope\.air_friction=0 --integrator explicit_euler", 4,
      "section 5 of handout 01: without air explicit Euler has no stable dt on the rope (exit 4)"),
+    (r"^\./springlab sim scenes/net_hanging\.json .*--integrator implicit_euler_blocks --steps 600", 4,
+     "section 2 of handout 02: one block sweep past its limit, its growth taken out by the stretch limit, "
+     "stopped by passivity on the step's own energy (exit 4)"),
     (r"^\./springlab run rope --integrator explicit_euler --dt 0\.0005", 4,
      "section 5: explicit Euler blows up on the rope at dt = 0.5 ms; the headless run says so (exit 4)"),
 ]

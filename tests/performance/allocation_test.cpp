@@ -70,7 +70,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"mass_on_spring.json", "midpoint"}, Case{"rope.json", "rk4"},
                       // Symplectic Euler on the fabric below its limit (0.29 ms; the scene's 8.3 ms blows up).
                       Case{"net_hanging.json", "symplectic_euler", 1e-4}, Case{"net_hanging.json", "implicit_euler"},
-                      Case{"net_hanging.json", "implicit_euler_blocks"}, Case{"net_flag.json", "implicit_euler"},
+                      // One block sweep below its limit (0.96 ms; at the scene's 8.3 ms the stretch
+                      // limit caps its growth, and the blow-up check reports the step's own energy).
+                      Case{"net_hanging.json", "implicit_euler_blocks", 5e-4}, Case{"net_flag.json", "implicit_euler"},
                       Case{"net_hanging.json", "xpbd"}, Case{"net_hanging.json", "projective_dynamics"},
                       Case{"softbody_ball.json", "symplectic_euler"}, Case{"softbody_ring_2d.json", "symplectic_euler"}),
     [](const ::testing::TestParamInfo<Case>& param) {

@@ -174,8 +174,32 @@ class Simulation {
   // at each step's two ends), and whether the last step's was known (sourcePower said).
   double sourceWork() const { return sourceWork_; }
   bool lastStepWorkKnown() const { return lastStepWorkKnown_; }
-  // The total energy less the sources' work: what may not rise in a stable run (J).
-  double energyBalance() const { return energies().total() - sourceWork_; }
+  // J, the energy the lab's corrections after each step (afterStep: contacts that project
+  // masses out, stretch limiting, a moving anchor) added since the last reset; negative where
+  // they took energy out. Counted while the blow-up check runs (or trackCorrectionWork). An
+  // instability the corrections cap is seen in it: past its limit a free corner of a cloth
+  // lying on a slope jitters at 9 m/s, held by the stretch limit, while the total energy falls.
+  double correctionWork() const { return correctionWork_; }
+  // The sources' and the corrections' work so far, to be put back after a computation that
+  // resets the scene in the middle of a run (the blow-up check's limit): without them the
+  // run's energy balance would jump by all the work done.
+  struct EnergyAccounts {
+    double sourceWork = 0.0, correctionWork = 0.0;
+  };
+  EnergyAccounts energyAccounts() const { return {sourceWork_, correctionWork_}; }
+  void restoreEnergyAccounts(const EnergyAccounts& a) {
+    sourceWork_ = a.sourceWork;
+    correctionWork_ = a.correctionWork;
+    sourcePowerAfter_.reset();
+    stepEnd_.reset();
+  }
+  // energies() at the end of the last step, kept when counting the corrections computed them
+  // (the blow-up check's, right after the step; the state must not have changed since).
+  Energies stepEndEnergies() const { return stepEnd_ ? *stepEnd_ : energies(); }
+  void trackCorrectionWork(bool on) { trackCorrections_ = on; }
+  // The total energy less the sources' and the corrections' work: what the step itself (the
+  // integrator and the forces) made, which may not rise in a stable run (J).
+  double energyBalance() const { return energies().total() - sourceWork_ - correctionWork_; }
 
   // ---- force terms, for the blow-up check's diagnosis -----------------------------------
   // The lab's force terms by name, indexed as its accumulateForces tests them with
@@ -258,6 +282,10 @@ class Simulation {
   std::optional<double> knownStepLimit_;  // s, setKnownStepLimit
   double sourceWork_ = 0.0;                // J, sourceWork()
   bool lastStepWorkKnown_ = true;
+  double correctionWork_ = 0.0;            // J, correctionWork()
+  bool trackCorrections_ = false;          // trackCorrectionWork
+  State integrated_;                       // the integrator's result, before afterStep (kept buffers)
+  std::optional<Energies> stepEnd_;        // stepEndEnergies, when this step computed them
   // The sources' power at the end of the last step, and that step's count: the next step's
   // start, unless the state was set by hand since.
   std::optional<std::pair<long, double>> sourcePowerAfter_;
