@@ -129,6 +129,12 @@ class BlowUpCheck {
   // J, the highest total energy (gravity included) the scene reached while energy came in;
   // a passive scene may not rise above it by more than passivityAllowance().
   double passiveCeiling_ = 0.0;
+  // J, the same for the climb, which holds the total energy less the sources' work only (not
+  // the corrections'): at a rest the corrections hold (the trampoline against its tethers in
+  // the wind) the step's own balance drifts by O(dt) per second, the sources' work estimated at
+  // the step's ends missing what the corrections take out (9 mJ/s under velocity Verlet at 0.8
+  // of its limit), and a climb counted from its low would read that drift as a blow-up.
+  double climbCeiling_ = 0.0;
   double energySwing_ = -1.0;  // J, setEnergySwing; negative: not measured
   // Without a measured swing the allowance cannot know how far a stable step's energy swings
   // near its limit (symplectic Euler's (1 + r) / (1 - r) has no bound as r -> 1), so a rise
