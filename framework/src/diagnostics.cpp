@@ -61,9 +61,10 @@ double BlowUpCheck::climbAllowance() const {
   return std::max({passivityAllowance(), kFastSwingMargin * fastSwing_, kClimbFraction * (climbCeiling_ - low_)});
 }
 
-double BlowUpCheck::passivityAllowance() const {
-  if (energySwing_ < 0.0) return kPassivityFraction * energyScale_;
-  return std::max(kSwingMargin * energySwing_, kSwingFloor * energyScale_);
+double BlowUpCheck::passivityAllowance(bool own) const {
+  const double swing = own ? ownSwing_ : energySwing_;
+  if (swing < 0.0) return kPassivityFraction * energyScale_;
+  return std::max(kSwingMargin * swing, kSwingFloor * energyScale_);
 }
 
 bool BlowUpCheck::changedSinceLastCheck(const Simulation& sim) const {
@@ -304,7 +305,7 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       // projective dynamics): the scene's spring energy is not its own, and it rests calmly
       // holding more of it (the 8 x 8 fabric under XPBD at 50 ms: +0.008 J above its flat
       // start, at rest). Neither passivity nor the climb applies.
-    } else if ((balance > passiveCeiling_ + passivityAllowance() || lessWork > climbCeiling_ + passivityAllowance()) &&
+    } else if ((balance > passiveCeiling_ + passivityAllowance(true) || lessWork > climbCeiling_ + passivityAllowance()) &&
                beyondLimitOrMeasured(sim, dt)) {
       // Detector 3, passivity: nothing puts energy in, yet the energy rose above its ceiling by
       // more than the integrator's own oscillation. Either energy: the step's own (less the
@@ -312,14 +313,14 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       // stretch limit takes out) or the total (a mass the step throws far below, which the
       // tethers pull back, reads as the corrections' work, and the step's own balance falls by
       // all of it: 833 J on the trampoline under velocity Verlet at 1.03 times its limit).
-      const bool own = balance - passiveCeiling_ >= lessWork - climbCeiling_;
+      const bool own = balance > passiveCeiling_ + passivityAllowance(true);
       const double energy = own ? balance : lessWork, ceiling = own ? passiveCeiling_ : climbCeiling_;
       std::ostringstream os;
       os << "passivity: the total energy";
       lessSources(os, own) << " rose to " << energy << " J, " << energy - ceiling
          << " J above the most the scene held while energy came in (" << ceiling
          << " J)," << noInput << "; the integrator's own energy oscillation is allowed "
-         << passivityAllowance() << " J ("
+         << passivityAllowance(own) << " J ("
          << (energySwing_ >= 0.0 ? "64 times its swing at half the stability limit"
                                  : "half the energy scale, no swing was measured, and dt is past the step's limit")
          << ")";
