@@ -111,14 +111,19 @@ class BlowUpCheck {
 
   double energyScale() const { return energyScale_; }
   // The integrator's own energy swing on this scene (J: the largest rise of the total energy
-  // above its start in a short run at half the stability limit); negative: not measured.
-  void setEnergySwing(double joules) { energySwing_ = joules; }
+  // less the sources' work above its start in a short run at half the stability limit), and the
+  // same for the step's own energy (less the corrections' work too); negative: not measured.
+  void setEnergySwing(double total, double own) {
+    energySwing_ = total;
+    ownSwing_ = own;
+  }
   // Whether the message computes the exact limit of the step to name the likely cause (on by
   // default). A study's trials need only the verdict: the limit costs up to seconds per
   // blow-up (an 80-mass rope: 10 s), and a chart meets dozens of them.
   void setExplainCause(bool explain) { explainCause_ = explain; }
-  // The rise of a passive scene's total energy above its ceiling that counts as a blow-up (J).
-  double passivityAllowance() const;
+  // The rise of a passive scene's total energy (less the sources' work; own: the step's own
+  // energy) above its ceiling that counts as a blow-up (J).
+  double passivityAllowance(bool own = false) const;
 
  private:
   // The message's "why it blew up" part for a non-finite state: the forces' story when they
@@ -129,7 +134,14 @@ class BlowUpCheck {
   // J, the highest total energy (gravity included) the scene reached while energy came in;
   // a passive scene may not rise above it by more than passivityAllowance().
   double passiveCeiling_ = 0.0;
+  // J, the same for the climb, which holds the total energy less the sources' work only (not
+  // the corrections'): at a rest the corrections hold (the trampoline against its tethers in
+  // the wind) the step's own balance drifts by O(dt) per second, the sources' work estimated at
+  // the step's ends missing what the corrections take out (9 mJ/s under velocity Verlet at 0.8
+  // of its limit), and a climb counted from its low would read that drift as a blow-up.
+  double climbCeiling_ = 0.0;
   double energySwing_ = -1.0;  // J, setEnergySwing; negative: not measured
+  double ownSwing_ = -1.0;     // J, the step's own energy's
   // Without a measured swing the allowance cannot know how far a stable step's energy swings
   // near its limit (symplectic Euler's (1 + r) / (1 - r) has no bound as r -> 1), so a rise
   // counts only when dt is past the limit of the linearised step (computed once per dt).

@@ -136,7 +136,7 @@ class Simulation {
   double blowUpEnergyScale() const { return blowUpCheck_.energyScale(); }
   // The integrator's energy swing on this scene for the passivity detector
   // (BlowUpCheck::setEnergySwing; studies measure it at half the stability limit).
-  void setEnergySwing(double joules) { blowUpCheck_.setEnergySwing(joules); }
+  void setEnergySwing(double total, double own) { blowUpCheck_.setEnergySwing(total, own); }
   // Whether a blow-up's message names the likely cause from the step's exact limit
   // (BlowUpCheck::setExplainCause; studies' trials turn it off, they need only the verdict).
   void setBlowUpExplanation(bool explain) { blowUpCheck_.setExplainCause(explain); }
