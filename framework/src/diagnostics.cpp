@@ -43,9 +43,9 @@ void BlowUpCheck::arm(const Simulation& sim) {
   for (const Mass& m : sim.masses) totalMass += m.m;
   energyScale_ = std::abs(e.kinetic) + std::abs(e.elastic) + std::abs(e.other) +
                  totalMass * (sim.gravitation.norm() * extent + 1.0);
-  climbCeiling_ = e.total() - sim.sourceWork();
-  passiveCeiling_ = climbCeiling_ - sim.correctionWork();
-  restartClimb(climbCeiling_);
+  totalCeiling_ = e.total() - sim.sourceWork();
+  passiveCeiling_ = totalCeiling_ - sim.correctionWork();
+  restartClimb(totalCeiling_);
   last_ = sim.state;
   lastStep_ = sim.stats.steps;
 }
@@ -58,7 +58,7 @@ void BlowUpCheck::restartClimb(double energy) {
 }
 
 double BlowUpCheck::climbAllowance() const {
-  return std::max({passivityAllowance(), kFastSwingMargin * fastSwing_, kClimbFraction * (climbCeiling_ - low_)});
+  return std::max({passivityAllowance(), kFastSwingMargin * fastSwing_, kClimbFraction * (totalCeiling_ - low_)});
 }
 
 double BlowUpCheck::passivityAllowance(bool own) const {
@@ -73,11 +73,11 @@ bool BlowUpCheck::changedSinceLastCheck(const Simulation& sim) const {
 
 void BlowUpCheck::admitUserEnergy(const Simulation& sim) {
   const double before = energyScale_;
-  const double ceiling = passiveCeiling_, climbCeiling = climbCeiling_;
+  const double ceiling = passiveCeiling_, totalCeiling = totalCeiling_;
   arm(sim);
   energyScale_ = std::max(before, energyScale_);
   passiveCeiling_ = std::max(ceiling, passiveCeiling_);
-  climbCeiling_ = std::max(climbCeiling, climbCeiling_);
+  totalCeiling_ = std::max(totalCeiling, totalCeiling_);
 }
 
 namespace {
@@ -264,7 +264,7 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     // wind's), so that a windy scene is held to it as well, and less what the corrections
     // after the step added or took (contacts, stretch limiting), so that an instability they
     // cap is held to it too: what is left is the step's own.
-    // (The climb holds the total less the sources' work alone, see climbCeiling_.)
+    // (The climb holds the total less the sources' work alone, see totalCeiling_.)
     const double lessWork = e.total() - sim.sourceWork();
     const double balance = lessWork - sim.correctionWork();
     // The messages' words for it, written only when a detector fires (a step allocates nothing).
@@ -298,14 +298,14 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       // counts (the wind's, Simulation::sourcePower) is taken off the total energy instead,
       // and the detectors below hold the rest to passivity.
       passiveCeiling_ = std::max(passiveCeiling_, balance);
-      climbCeiling_ = std::max(climbCeiling_, lessWork);
+      totalCeiling_ = std::max(totalCeiling_, lessWork);
       restartClimb(lessWork);
     } else if (!sim.integrator().restsAtStaticEquilibrium()) {
       // A method that rests away from the springs' equilibrium (XPBD from zero multipliers,
       // projective dynamics): the scene's spring energy is not its own, and it rests calmly
       // holding more of it (the 8 x 8 fabric under XPBD at 50 ms: +0.008 J above its flat
       // start, at rest). Neither passivity nor the climb applies.
-    } else if ((balance > passiveCeiling_ + passivityAllowance(true) || lessWork > climbCeiling_ + passivityAllowance()) &&
+    } else if ((balance > passiveCeiling_ + passivityAllowance(true) || lessWork > totalCeiling_ + passivityAllowance()) &&
                beyondLimitOrMeasured(sim, dt)) {
       // Detector 3, passivity: nothing puts energy in, yet the energy rose above its ceiling by
       // more than the integrator's own oscillation. Either energy: the step's own (less the
@@ -314,7 +314,7 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       // tethers pull back, reads as the corrections' work, and the step's own balance falls by
       // all of it: 833 J on the trampoline under velocity Verlet at 1.03 times its limit).
       const bool own = balance > passiveCeiling_ + passivityAllowance(true);
-      const double energy = own ? balance : lessWork, ceiling = own ? passiveCeiling_ : climbCeiling_;
+      const double energy = own ? balance : lessWork, ceiling = own ? passiveCeiling_ : totalCeiling_;
       std::ostringstream os;
       os << "passivity: the total energy";
       lessSources(os, own) << " rose to " << energy << " J, " << energy - ceiling
@@ -346,7 +346,7 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
            << ": a stable step's energy swings but does not win back what the scene lost (allowed "
            << climbAllowance() << " J, the largest of the integrator's own oscillation " << passivityAllowance()
            << " J, twice its largest rise within " << kFastWindow << " steps " << kFastSwingMargin * fastSwing_
-           << " J, and " << 100.0 * kClimbFraction << " % of the " << climbCeiling_ - low_ << " J the scene lost)";
+           << " J, and " << 100.0 * kClimbFraction << " % of the " << totalCeiling_ - low_ << " J the scene lost)";
         why = os.str();
       }
     }

@@ -131,15 +131,16 @@ class BlowUpCheck {
   std::string blameForces(Simulation& sim);
 
   double energyScale_ = 0.0;  // J
-  // J, the highest total energy (gravity included) the scene reached while energy came in;
-  // a passive scene may not rise above it by more than passivityAllowance().
+  // J, the highest energy the scene reached while energy came in, of the two that passivity
+  // holds: the step's own (the total, gravity included, less the sources' and the corrections'
+  // work) and the total less the sources' work; a passive scene may rise above neither by more
+  // than passivityAllowance(own) / passivityAllowance().
   double passiveCeiling_ = 0.0;
-  // J, the same for the climb, which holds the total energy less the sources' work only (not
-  // the corrections'): at a rest the corrections hold (the trampoline against its tethers in
-  // the wind) the step's own balance drifts by O(dt) per second, the sources' work estimated at
-  // the step's ends missing what the corrections take out (9 mJ/s under velocity Verlet at 0.8
-  // of its limit), and a climb counted from its low would read that drift as a blow-up.
-  double climbCeiling_ = 0.0;
+  // The climb holds the latter only: at a rest the corrections hold (the trampoline against its
+  // tethers in the wind) the step's own balance drifts by O(dt) per second, the sources' work
+  // estimated at the step's ends missing what the corrections take out (9 mJ/s under velocity
+  // Verlet at 0.8 of its limit), and a climb counted from its low would read that as a blow-up.
+  double totalCeiling_ = 0.0;
   double energySwing_ = -1.0;  // J, setEnergySwing; negative: not measured
   double ownSwing_ = -1.0;     // J, the step's own energy's
   // Without a measured swing the allowance cannot know how far a stable step's energy swings
