@@ -43,11 +43,42 @@ void BlowUpCheck::arm(const Simulation& sim) {
   for (const Mass& m : sim.masses) totalMass += m.m;
   energyScale_ = std::abs(e.kinetic) + std::abs(e.elastic) + std::abs(e.other) +
                  totalMass * (sim.gravitation.norm() * extent + 1.0);
+  speedScale_ = totalMass > 0.0 ? std::sqrt(2.0 * energyScale_ / totalMass) : 0.0;
+  reversal_.restart();
+  undampedMass_ = -1;
   totalCeiling_ = e.total() - sim.sourceWork();
   passiveCeiling_ = totalCeiling_ - sim.correctionWork();
   restartClimb(totalCeiling_);
   last_ = sim.state;
   lastStep_ = sim.stats.steps;
+}
+
+double StepReversal::record(const std::vector<Vec3>& velocities) {
+  double largest = 0.0;
+  if (count_ >= 2 && last_.size() == velocities.size() && before_.size() == velocities.size()) {
+    for (std::size_t i = 0; i < velocities.size(); ++i) {
+      const double reversal = 0.25 * (velocities[i] - 2.0 * last_[i] + before_[i]).norm();
+      if (reversal > largest) {
+        largest = reversal;
+        lastMass_ = static_cast<int>(i);
+      }
+    }
+    recent_[static_cast<std::size_t>((count_ - 2) % kWindow)] = largest;
+  }
+  ++count_;
+  std::swap(before_, last_);
+  last_ = velocities;  // reuses the storage of the velocities two steps back
+  if (count_ < kWindow + 2) return 0.0;
+  // Held, not dying out: a stable mode near its limit turns back every step too, for hundreds
+  // of steps while it decays (the mass on its damped spring at 0.97 times the limit), so the
+  // newer half of the window must reach as high as the older half.
+  double older = 0.0, newer = 0.0;
+  for (int k = 0; k < kWindow; ++k) {
+    const double value = recent_[static_cast<std::size_t>((count_ - 2 + k) % kWindow)];  // oldest first
+    (k < kWindow / 2 ? older : newer) = std::max(k < kWindow / 2 ? older : newer, value);
+  }
+  if (newer < older) return 0.0;
+  return *std::min_element(recent_.begin(), recent_.end());
 }
 
 void BlowUpCheck::restartClimb(double energy) {
@@ -59,6 +90,26 @@ void BlowUpCheck::restartClimb(double energy) {
 
 double BlowUpCheck::climbAllowance() const {
   return std::max({passivityAllowance(), kFastSwingMargin * fastSwing_, kClimbFraction * (totalCeiling_ - low_)});
+}
+
+bool BlowUpCheck::turningMassIsDamped(Simulation& sim) {
+  // The forces on the mass with its velocity and with it at rest, the other masses as they
+  // are: the difference is its dampers' (springs', air's, a contact's, the wind's drag).
+  const int i = reversal_.lastMass();
+  if (i < 0 || i >= sim.numOfMasses() || i == undampedMass_) return false;
+  const Stats stats = sim.stats;
+  std::vector<Vec3> moving, still;
+  sim.evaluateForces(sim.state, moving);
+  State atRest = sim.state;
+  atRest.vel[static_cast<std::size_t>(i)].setZero();
+  sim.evaluateForces(atRest, still);
+  sim.stats = stats;
+  const Vec3& v = sim.state.vel[static_cast<std::size_t>(i)];
+  const Vec3 damping = moving[static_cast<std::size_t>(i)] - still[static_cast<std::size_t>(i)];
+  // The power the dampers take out of its motion, against round-off of the forces.
+  const bool damped = -damping.dot(v) > 1e-9 * moving[static_cast<std::size_t>(i)].norm() * v.norm();
+  if (!damped) undampedMass_ = i;  // asked again every step it holds: answer from here on
+  return damped;
 }
 
 double BlowUpCheck::passivityAllowance(bool own) const {
@@ -349,6 +400,23 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
            << " J, and " << 100.0 * kClimbFraction << " % of the " << totalCeiling_ - low_ << " J the scene lost)";
         why = os.str();
       }
+    }
+  }
+  // Detector 5, a capped instability: motion that reverses every step, held (see
+  // StepReversal). Steps that do not follow each other (a reset, a state set by hand) start
+  // the window again.
+  if (why.empty() && reversalSwing_ >= 0.0 && sim.integrator().restsAtStaticEquilibrium()) {
+    if (lastStep_ + 1 != sim.stats.steps) reversal_.restart();
+    const double held = reversal_.record(sim.state.vel);
+    const double allowed = std::max(kReversalMargin * reversalSwing_, kReversalFloor * speedScale_);
+    if (held > allowed && turningMassIsDamped(sim) && beyondLimitOrMeasured(sim, dt)) {
+      std::ostringstream os;
+      os << "a capped instability: mass " << reversal_.lastMass() << "'s velocity (and others') turned back every step for "
+         << StepReversal::kWindow << " steps, by at least " << held << " m/s a step, where a stable step damps such motion "
+         << "(allowed " << allowed << " m/s: " << kReversalMargin << " times what the scene held at half the stability "
+         << "limit, " << reversalSwing_ << " m/s); a contact or the stretch limit keeps it from growing, so the energy "
+         << "does not show it";
+      why = os.str();
     }
   }
   if (why.empty()) {

@@ -33,11 +33,16 @@ void sample(const Simulation& sim, bool keepPositions, RunResult& out) {
 
 namespace {
 
-// The integrator's energy swing: the largest rise of the total energy less the wind's work (and
-// of the step's own, less the corrections' work too: the two energies the passivity detector
-// holds) above its start in a run of the scene at dt (half the stability limit), over the run's
-// simulated time but at most 4000 steps; -1 when that run goes non-finite (nothing measured).
-std::pair<double, double> energySwing(const Registry& registry, const RunSpec& spec, double dt) {
+// What a stable run holds: the largest rise of the total energy less the wind's work (and of the
+// step's own, less the corrections' work too: the two energies the passivity detector holds)
+// above its start, and the largest step reversal it sustains (StepReversal), in a run of the
+// scene at dt (half the stability limit), over the run's simulated time but at most 4000 steps;
+// -1 when that run goes non-finite (nothing measured).
+struct Swing {
+  double total = -1.0, own = -1.0;  // J
+  double reversal = -1.0;           // m/s
+};
+Swing measureSwing(const Registry& registry, const RunSpec& spec, double dt) {
   LoadedScene loaded = registry.loadScene(spec.scene);
   Simulation& sim = *loaded.sim;
   sim.setIntegrator(registry.makeIntegrator(spec.integrator));
@@ -47,15 +52,19 @@ std::pair<double, double> energySwing(const Registry& registry, const RunSpec& s
   const double duration = spec.dt * static_cast<double>(spec.stepsPerSample) * spec.samples;
   const long steps = std::clamp(std::lround(duration / dt), 1L, 4000L);
   const double start = sim.energyBalance();
-  double total = 0.0, own = 0.0;
+  Swing swing{0.0, 0.0, 0.0};
+  StepReversal reversal;
   for (long k = 0; k < steps; ++k) {
     sim.operate(dt);
     const double e = sim.energyBalance();
-    if (!std::isfinite(e)) return {-1.0, -1.0};
-    own = std::max(own, e - start);
-    total = std::max(total, e + sim.correctionWork() - start);
+    if (!std::isfinite(e)) return Swing{};
+    swing.own = std::max(swing.own, e - start);
+    swing.total = std::max(swing.total, e + sim.correctionWork() - start);
+    swing.reversal = std::max(swing.reversal, reversal.record(sim.state.vel));
   }
-  return {total, own};
+  // Too short a run to fill the reversal's window measured nothing: detector 5 stays off.
+  if (steps < StepReversal::kWindow + 2) swing.reversal = -1.0;
+  return swing;
 }
 
 }  // namespace
@@ -68,8 +77,9 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   sim.setBlowUpCheck(true);
   sim.setBlowUpExplanation(spec.explainBlowUp);
   if (spec.swingDt > 0.0) {
-    const auto [total, own] = energySwing(registry, spec, spec.swingDt);
-    sim.setEnergySwing(total, own);
+    const Swing swing = measureSwing(registry, spec, spec.swingDt);
+    sim.setEnergySwing(swing.total, swing.own);
+    if (spec.watchReversal) sim.setReversalSwing(swing.reversal);
   }
 
   RunResult out;

@@ -160,5 +160,53 @@ TEST(BlowUpCheck, ANonFiniteSpringForceNamesTheSpring) {
   EXPECT_EQ(sim.gravitation, Vec3(0, -9.81, 0));
 }
 
+// ---- detector 5's measure: motion that reverses every step ---------------------------------------
+// The oracle is the definition: a velocity that flips sign every step with amplitude A has
+// second difference 4 A; a smooth motion (constant acceleration a) has a dt^2, and a single
+// impact is not held over the window.
+TEST(StepReversal, AVelocityThatFlipsEveryStepIsHeldAtItsAmplitude) {
+  StepReversal reversal;
+  const double amplitude = 0.3, dt = 1e-3;
+  double held = 0.0;
+  for (int k = 0; k < StepReversal::kWindow + 2; ++k) {
+    // mass 0 drifts smoothly under gravity, mass 1 flips about that drift
+    const double drift = -9.81 * dt * k;
+    held = reversal.record({Vec3(0, drift, 0), Vec3(0, drift + (k % 2 == 0 ? amplitude : -amplitude), 0)});
+  }
+  EXPECT_NEAR(held, amplitude, 1e-12);
+  EXPECT_EQ(reversal.lastMass(), 1);
+}
+
+TEST(StepReversal, SmoothMotionAndAnImpactAreNotHeld) {
+  StepReversal reversal;
+  const double dt = 1e-3;
+  double held = 0.0;
+  for (int k = 0; k < 3 * StepReversal::kWindow; ++k) {
+    // uniform acceleration: a zero second difference; one impact (a velocity turned at step 40)
+    double v = -9.81 * dt * k;
+    if (k >= 40) v = -v;
+    held = std::max(held, reversal.record({Vec3(0, v, 0)}));
+  }
+  EXPECT_LT(held, 1e-12);
+}
+
+// A stable mode near its limit turns back every step while it decays (radius 0.999 a step: a
+// hundred times slower than the window): not held.
+TEST(StepReversal, AFlipThatDiesOutIsNotHeld) {
+  StepReversal reversal;
+  double held = 0.0, amplitude = 1.0;
+  for (int k = 0; k < 4 * StepReversal::kWindow; ++k, amplitude *= 0.999) {
+    held = std::max(held, reversal.record({Vec3(k % 2 == 0 ? amplitude : -amplitude, 0, 0)}));
+  }
+  EXPECT_EQ(held, 0.0);
+}
+
+TEST(StepReversal, RestartForgetsTheWindow) {
+  StepReversal reversal;
+  for (int k = 0; k < StepReversal::kWindow + 2; ++k) reversal.record({Vec3(k % 2 == 0 ? 1.0 : -1.0, 0, 0)});
+  reversal.restart();
+  EXPECT_EQ(reversal.record({Vec3(1, 0, 0)}), 0.0);
+}
+
 }  // namespace
 }  // namespace springlab

@@ -33,7 +33,35 @@ class BlowUp : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Watches a run, with four detectors: a non-finite state; kinetic plus elastic plus other
+// How much of the masses' motion turns back every step, held over a window of steps: the
+// measure of detector 5 (a capped instability, see BlowUpCheck). Per step it takes the largest
+// quarter second difference of a mass's velocity over three steps, |v_k - 2 v_k-1 + v_k-2| / 4:
+// a motion that reverses each step with amplitude A gives A, a smooth one |d3x/dt3| dt^2 / 4. A
+// stable step damps the fast modes whose motion reverses (their eigenvalues lie inside the unit
+// circle), an impact excites them once; only a step past its limit keeps them going, when a
+// contact or the stretch limit caps their growth (measured on the shipped scenes under
+// symplectic Euler: at 0.97 times the limit at most 0.06 m/s, 34 times what the same scene holds
+// at half the limit; at 1.03 times 0.6 to 35 m/s).
+class StepReversal {
+ public:
+  static constexpr int kWindow = 64;
+  // Takes the velocities after a step and returns the smallest reversal over the last kWindow
+  // steps (m/s), or 0 while it dies out (the newer half of the window stays below the older
+  // half's largest) and until that many steps were recorded.
+  double record(const std::vector<Vec3>& velocities);
+  // Forgets the steps recorded (a state not made by the step: reset, a drag).
+  void restart() { count_ = 0; }
+  // The mass whose reversal was largest in the last step recorded.
+  int lastMass() const { return lastMass_; }
+
+ private:
+  std::vector<Vec3> last_, before_;  // the velocities one and two steps back
+  std::array<double, kWindow> recent_{};
+  int count_ = 0;
+  int lastMass_ = -1;
+};
+
+// Watches a run, with five detectors: a non-finite state; kinetic plus elastic plus other
 // potential energy (otherPotentialEnergy: ground, gas) grown far beyond the energy the scene
 // could ever hold (its initial energy plus the work gravity can do: the runaway factor); and
 // passivity: a scene that puts no energy in (no wind, pump, moving pinned mass or user drag)
@@ -48,6 +76,10 @@ class BlowUp : public std::runtime_error {
 // saturates after the scene has lost most of its start (kClimbFraction). Passivity and the
 // climb are for methods that rest at the scene's static equilibrium
 // (Integrator::restsAtStaticEquilibrium); the others are watched by the first two detectors.
+// And a capped instability (StepReversal), where a swing was measured: a mode past its limit
+// that a one-sided contact or the stretch limit holds down (a corner of cloth jittering at
+// 4 m/s on the slope, a ball resting on a penalty floor jittering at 3 m/s) loses to them
+// what the step puts in, and no energy detector sees it.
 //
 // The oscillation allowed: a stable step's true energy swings about a conserved (modified)
 // one. On a mode at a fraction r = dt / limit of its limit symplectic Euler's energy swings
@@ -85,6 +117,12 @@ class BlowUpCheck {
   // from its ceiling to its low (measured margins: at 0.97 times the limit every shipped scene,
   // the damped chain and the inflated ball stay below half of that; the rope's midpoint rule at
   // 1.03 times climbs 5 times past it).
+  // Detector 5: motion that reverses every step, sustained over StepReversal::kWindow steps,
+  // by more than kReversalMargin times the most the scene sustained at half the limit
+  // (setReversalSwing; without it the detector is off) and kReversalFloor of the speed the
+  // energy scale stands for (sqrt(2 scale / mass): 33 m/s on the 32 x 32 cloth).
+  static constexpr double kReversalMargin = 64.0;
+  static constexpr double kReversalFloor = 1e-3;
   static constexpr int kFastWindow = 64;
   static constexpr double kFastSwingMargin = 2.0;
   static constexpr double kClimbFraction = 0.02;
@@ -117,6 +155,9 @@ class BlowUpCheck {
     energySwing_ = total;
     ownSwing_ = own;
   }
+  // The largest reversal (m/s, StepReversal) a run at half the stability limit sustained;
+  // negative: not measured, detector 5 off.
+  void setReversalSwing(double speed) { reversalSwing_ = speed; }
   // Whether the message computes the exact limit of the step to name the likely cause (on by
   // default). A study's trials need only the verdict: the limit costs up to seconds per
   // blow-up (an 80-mass rope: 10 s), and a chart meets dozens of them.
@@ -143,6 +184,15 @@ class BlowUpCheck {
   double totalCeiling_ = 0.0;
   double energySwing_ = -1.0;  // J, setEnergySwing; negative: not measured
   double ownSwing_ = -1.0;     // J, the step's own energy's
+  // Whether dampers act on the mass whose motion turned back most in the last step: only then
+  // does a stable step damp that motion (an undamped mode at 0.97 of its limit turns back every
+  // step for ever, the mass on its undamped spring at 0.17 m/s). Two force evaluations, only
+  // when detector 5 is about to fire.
+  bool turningMassIsDamped(Simulation& sim);
+  int undampedMass_ = -1;  // the last mass turningMassIsDamped found undamped
+  double reversalSwing_ = -1.0;  // m/s, setReversalSwing
+  double speedScale_ = 0.0;      // m/s, sqrt(2 energy scale / total mass)
+  StepReversal reversal_;
   // Without a measured swing the allowance cannot know how far a stable step's energy swings
   // near its limit (symplectic Euler's (1 + r) / (1 - r) has no bound as r -> 1), so a rise
   // counts only when dt is past the limit of the linearised step (computed once per dt).

@@ -137,6 +137,8 @@ class Simulation {
   // The integrator's energy swing on this scene for the passivity detector
   // (BlowUpCheck::setEnergySwing; studies measure it at half the stability limit).
   void setEnergySwing(double total, double own) { blowUpCheck_.setEnergySwing(total, own); }
+  // The largest step reversal a run at half the limit sustained (BlowUpCheck::setReversalSwing).
+  void setReversalSwing(double speed) { blowUpCheck_.setReversalSwing(speed); }
   // Whether a blow-up's message names the likely cause from the step's exact limit
   // (BlowUpCheck::setExplainCause; studies' trials turn it off, they need only the verdict).
   void setBlowUpExplanation(bool explain) { blowUpCheck_.setExplainCause(explain); }
