@@ -81,8 +81,9 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   if (spec.swingDt > 0.0) {
     const Swing swing = measureSwing(registry, spec, spec.swingDt);
     sim.setEnergySwing(swing.total, swing.own);
-    sim.setReversalSwing(spec.watchReversal ? swing.reversal : std::numeric_limits<double>::infinity());
+    sim.setReversalSwing(swing.reversal);
   }
+  if (!spec.watchReversal) sim.setReversalSwing(std::numeric_limits<double>::infinity());
 
   RunResult out;
   out.masses = sim.numOfMasses();
