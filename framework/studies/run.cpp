@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <iostream>
-#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -63,8 +62,7 @@ Swing measureSwing(const Registry& registry, const RunSpec& spec, double dt) {
     swing.total = std::max(swing.total, e + sim.correctionWork() - start);
     swing.reversal = std::max(swing.reversal, reversal.record(sim.state.vel));
   }
-  // Too short a run to fill the reversal's window measured nothing (detector 5 then holds its
-  // floor alone, past the step's limit).
+  // Too short a run to fill the reversal's window measured nothing: detector 5 stays off.
   if (steps < StepReversal::kWindow + 2) swing.reversal = -1.0;
   return swing;
 }
@@ -81,9 +79,8 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   if (spec.swingDt > 0.0) {
     const Swing swing = measureSwing(registry, spec, spec.swingDt);
     sim.setEnergySwing(swing.total, swing.own);
-    sim.setReversalSwing(swing.reversal);
+    if (spec.watchReversal) sim.setReversalSwing(swing.reversal);
   }
-  if (!spec.watchReversal) sim.setReversalSwing(std::numeric_limits<double>::infinity());
 
   RunResult out;
   out.masses = sim.numOfMasses();
