@@ -69,13 +69,14 @@ double StepReversal::record(const std::vector<Vec3>& velocities) {
   std::swap(before_, last_);
   last_ = velocities;  // reuses the storage of the velocities two steps back
   if (count_ < kWindow + 2) return 0.0;
-  // Held, not dying out: a stable mode near its limit turns back every step too, for hundreds
-  // of steps while it decays (the mass on its damped spring at 0.97 times the limit), so the
-  // newer half of the window must reach as high as the older half.
+  // Held, not dying out: a damped mode just inside its limit turns back every step too, for
+  // hundreds of steps while it decays, so the newer half of the window must reach as high as the
+  // older half.
   double older = 0.0, newer = 0.0;
   for (int k = 0; k < kWindow; ++k) {
     const double value = recent_[static_cast<std::size_t>((count_ - 2 + k) % kWindow)];  // oldest first
-    (k < kWindow / 2 ? older : newer) = std::max(k < kWindow / 2 ? older : newer, value);
+    double& half = k < kWindow / 2 ? older : newer;
+    half = std::max(half, value);
   }
   if (newer < older) return 0.0;
   return *std::min_element(recent_.begin(), recent_.end());
