@@ -253,21 +253,18 @@ bool anchorsMoved(const Simulation& sim, const State& last) {
 }
 
 // The exact stability limit of the step that runs (stepStableDt with `options`), leaving the
-// state and counters as the blow-up left them; NaN when it cannot be computed.
+// run as it found it (Simulation::saveRun: the state, the lab's data, this check's watch);
+// NaN when it cannot be computed. Called from inside check(): resumeRun puts this very
+// check's members back too.
 double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options) {
-  const State blownUp = sim.state;
-  const Stats stats = sim.stats;
-  const Simulation::EnergyAccounts accounts = sim.energyAccounts();
+  const Simulation::SavedRun run = sim.saveRun();
   double limit = NAN;
   try {
     limit = stepStableDt(sim, options);
   } catch (const std::exception&) {
     limit = NAN;
   }
-  sim.state = blownUp;
-  sim.stats = stats;
-  sim.restoreEnergyAccounts(accounts);
-  sim.integrator().reset();
+  sim.resumeRun(run);
   return limit;
 }
 
@@ -294,8 +291,10 @@ bool BlowUpCheck::beyondLimitOrMeasured(Simulation& sim, double dt) {
 
 bool BlowUpCheck::beyondLimit(Simulation& sim, double dt) {
   if (dt != limitDt_) {
+    // Computed before anything is written: the computation puts this check's members back.
+    const double limit = exactLimit(sim);
     limitDt_ = dt;
-    limit_ = exactLimit(sim);
+    limit_ = limit;
     beyondLimit_ = !(dt <= limit_);  // NaN (not computable) counts as beyond
   }
   return beyondLimit_;
