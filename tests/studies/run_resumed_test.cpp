@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <ostream>
 #include <string>
 
 #include <springlab/step_stability.hpp>
@@ -26,6 +27,8 @@ struct UserInput {
   // What the user does before each step (k counts steps from 0): keys, a drag.
   std::function<void(Simulation&, int k)> act;
 };
+
+void PrintTo(const UserInput& input, std::ostream* os) { *os << input.scene; }
 
 // The index in shapes() of the first shape the user may drag.
 int firstMovableShape(const Simulation& sim) {
