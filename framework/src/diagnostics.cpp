@@ -253,21 +253,18 @@ bool anchorsMoved(const Simulation& sim, const State& last) {
 }
 
 // The exact stability limit of the step that runs (stepStableDt with `options`), leaving the
-// state and counters as the blow-up left them; NaN when it cannot be computed.
+// run as it found it (Simulation::saveRun: the state, the lab's data, this check's watch);
+// NaN when it cannot be computed. Called from inside check(): resumeRun puts this very
+// check's members back too.
 double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options) {
-  const State blownUp = sim.state;
-  const Stats stats = sim.stats;
-  const Simulation::EnergyAccounts accounts = sim.energyAccounts();
+  const Simulation::SavedRun run = sim.saveRun();
   double limit = NAN;
   try {
     limit = stepStableDt(sim, options);
   } catch (const std::exception&) {
     limit = NAN;
   }
-  sim.state = blownUp;
-  sim.stats = stats;
-  sim.restoreEnergyAccounts(accounts);
-  sim.integrator().reset();
+  sim.resumeRun(run);
   return limit;
 }
 
@@ -289,9 +286,15 @@ double limitAt(Simulation& sim, const State& at) {
 
 bool BlowUpCheck::beyondLimitOrMeasured(Simulation& sim, double dt) {
   if (energySwing_ >= 0.0) return true;
+  return beyondLimit(sim, dt);
+}
+
+bool BlowUpCheck::beyondLimit(Simulation& sim, double dt) {
   if (dt != limitDt_) {
+    // Computed before anything is written: the computation puts this check's members back.
+    const double limit = exactLimit(sim);
     limitDt_ = dt;
-    limit_ = exactLimit(sim);
+    limit_ = limit;
     beyondLimit_ = !(dt <= limit_);  // NaN (not computable) counts as beyond
   }
   return beyondLimit_;
@@ -405,18 +408,24 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   }
   // Detector 5, a capped instability: motion that reverses every step, held (see
   // StepReversal). Steps that do not follow each other (a reset, a state set by hand) start
-  // the window again.
-  if (why.empty() && reversalSwing_ >= 0.0 && sim.integrator().restsAtStaticEquilibrium()) {
+  // the window again. Without a swing run (the viewer, `sim`) it holds the floor alone and
+  // counts only past the step's limit, as passivity does.
+  if (why.empty() && sim.integrator().restsAtStaticEquilibrium()) {
     if (lastStep_ + 1 != sim.stats.steps) reversal_.restart();
     const double held = reversal_.record(sim.state.vel);
-    const double allowed = std::max(kReversalMargin * reversalSwing_, kReversalFloor * speedScale_);
-    if (held > allowed && turningMassIsDamped(sim) && beyondLimitOrMeasured(sim, dt)) {
+    const double floor = kReversalFloor * speedScale_;
+    const double allowed = reversalSwing_ >= 0.0 ? std::max(kReversalMargin * reversalSwing_, floor) : floor;
+    if (held > allowed && (reversalSwing_ >= 0.0 || beyondLimit(sim, dt)) && turningMassIsDamped(sim)) {
       std::ostringstream os;
       os << "a capped instability: mass " << reversal_.lastMass() << "'s velocity (and others') turned back every step for "
          << StepReversal::kWindow << " steps, by at least " << held << " m/s a step, where a stable step damps such motion "
-         << "(allowed " << allowed << " m/s: " << kReversalMargin << " times what the scene held at half the stability "
-         << "limit, " << reversalSwing_ << " m/s); a contact or the stretch limit keeps it from growing, so the energy "
-         << "does not show it";
+         << "(allowed " << allowed << " m/s: ";
+      if (reversalSwing_ >= 0.0) {
+        os << kReversalMargin << " times what the scene held at half the stability limit, " << reversalSwing_ << " m/s";
+      } else {
+        os << "a thousandth of the speed its energy scale stands for; no swing was measured, and dt is past the step's limit";
+      }
+      os << "); a contact or the stretch limit keeps it from growing, so the energy does not show it";
       why = os.str();
     }
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 
 namespace springlab {
 
@@ -117,6 +119,13 @@ std::vector<Observable> RopeSimulation::observables() const {
 void RopeSimulation::onReset() {
   ropeConnectionPos = initialConnectionPos_;
   ropeConnectionVel = initialConnectionVel_;
+}
+
+// The connection point, where the user's keys have carried it.
+std::any RopeSimulation::saveLabData() const { return std::pair(ropeConnectionPos, ropeConnectionVel); }
+
+void RopeSimulation::restoreLabData(const std::any& data) {
+  std::tie(ropeConnectionPos, ropeConnectionVel) = std::any_cast<std::pair<Vec3, Vec3>>(data);
 }
 
 double RopeSimulation::otherPotentialEnergy(const State& s) const {

@@ -156,6 +156,27 @@ void Simulation::reset() {
   blowUpCheck_.arm(*this);
 }
 
+Simulation::SavedRun Simulation::saveRun() const {
+  return {state, force, stats, grabbed_, grabTarget_, sourceWork_, correctionWork_, lastStepWorkKnown_,
+          sourcePowerAfter_, stepEnd_, saveLabData(), blowUpCheck_};
+}
+
+void Simulation::resumeRun(const SavedRun& saved) {
+  state = saved.state;
+  force = saved.force;
+  stats = saved.stats;
+  grabbed_ = saved.grabbed;
+  grabTarget_ = saved.grabTarget;
+  sourceWork_ = saved.sourceWork;
+  correctionWork_ = saved.correctionWork;
+  lastStepWorkKnown_ = saved.lastStepWorkKnown;
+  sourcePowerAfter_ = saved.sourcePowerAfter;
+  stepEnd_ = saved.stepEnd;
+  restoreLabData(saved.labData);
+  blowUpCheck_ = saved.blowUpCheck;
+  integrator_->reset();
+}
+
 Energies Simulation::energies() const {
   Energies e;
   for (int i = 0; i < numOfMasses(); ++i) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iostream>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -62,7 +63,8 @@ Swing measureSwing(const Registry& registry, const RunSpec& spec, double dt) {
     swing.total = std::max(swing.total, e + sim.correctionWork() - start);
     swing.reversal = std::max(swing.reversal, reversal.record(sim.state.vel));
   }
-  // Too short a run to fill the reversal's window measured nothing: detector 5 stays off.
+  // Too short a run to fill the reversal's window measured nothing (detector 5 then holds its
+  // floor alone, past the step's limit).
   if (steps < StepReversal::kWindow + 2) swing.reversal = -1.0;
   return swing;
 }
@@ -79,8 +81,9 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   if (spec.swingDt > 0.0) {
     const Swing swing = measureSwing(registry, spec, spec.swingDt);
     sim.setEnergySwing(swing.total, swing.own);
-    if (spec.watchReversal) sim.setReversalSwing(swing.reversal);
+    sim.setReversalSwing(swing.reversal);
   }
+  if (!spec.watchReversal) sim.setReversalSwing(std::numeric_limits<double>::infinity());
 
   RunResult out;
   out.masses = sim.numOfMasses();

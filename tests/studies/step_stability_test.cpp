@@ -482,6 +482,27 @@ TEST(CappedInstability, TheDroppedClothSurvivesJustBelowAndIsStoppedByItsJitterJ
   }
 }
 
+// The same without a swing run, as `sim` and the viewer run it: the detector holds its floor
+// alone and counts only past the step's limit, so 0.97 times the limit runs to the end and 1.03
+// times is stopped (the slope's corner from step 215, 0.35 s).
+TEST(CappedInstability, WithoutASwingRunTheSlopesCornerIsStoppedJustAboveTheLimitOnly) {
+  const SceneDocument slope = shippedScene("net_sphere_slope_weak_wind.json");
+  const double predicted = studies::sceneStepStableDt(allLabs(), slope, "symplectic_euler");
+  for (const double factor : {0.97, 1.03}) {
+    const double dt = factor * predicted;
+    studies::RunSpec spec{slope, "symplectic_euler", dt, std::lround(std::ceil(2.0 / dt)), 1};
+    spec.keepPositions = false;
+    const studies::RunResult run = studies::runScene(allLabs(), spec);
+    if (factor < 1.0) {
+      EXPECT_TRUE(run.stable) << run.failure;
+    } else {
+      EXPECT_FALSE(run.stable) << "1.03 x " << predicted << " s must be reported";
+      EXPECT_NE(run.failure.find("capped instability"), std::string::npos) << run.failure;
+      EXPECT_NE(run.failure.find("no swing was measured"), std::string::npos) << run.failure;
+    }
+  }
+}
+
 // ---- position Verlet on projected contacts: the ball under the user's sphere ---------------------
 // The contacts set the velocities of the masses they touch after each step. Position Verlet's
 // wrapper kept its own record of the last positions as history and ignored those velocities, so

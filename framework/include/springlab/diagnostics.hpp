@@ -76,7 +76,7 @@ class StepReversal {
 // saturates after the scene has lost most of its start (kClimbFraction). Passivity and the
 // climb are for methods that rest at the scene's static equilibrium
 // (Integrator::restsAtStaticEquilibrium); the others are watched by the first two detectors.
-// And a capped instability (StepReversal), where a swing was measured: a mode past its limit
+// And a capped instability (StepReversal): a mode past its limit
 // that a one-sided contact or the stretch limit holds down (a corner of cloth jittering at
 // 4 m/s on the slope, a ball resting on a penalty floor jittering at 3 m/s) loses to them
 // what the step puts in, and no energy detector sees it.
@@ -119,8 +119,9 @@ class BlowUpCheck {
   // 1.03 times climbs 5 times past it).
   // Detector 5: motion that reverses every step, sustained over StepReversal::kWindow steps,
   // by more than kReversalMargin times the most the scene sustained at half the limit
-  // (setReversalSwing; without it the detector is off) and kReversalFloor of the speed the
-  // energy scale stands for (sqrt(2 scale / mass): 33 m/s on the 32 x 32 cloth).
+  // (setReversalSwing) and kReversalFloor of the speed the energy scale stands for
+  // (sqrt(2 scale / mass): 33 m/s on the 32 x 32 cloth); without a swing run, by more than
+  // that floor while dt is past the step's limit.
   static constexpr double kReversalMargin = 64.0;
   static constexpr double kReversalFloor = 1e-3;
   static constexpr int kFastWindow = 64;
@@ -156,7 +157,8 @@ class BlowUpCheck {
     ownSwing_ = own;
   }
   // The largest reversal (m/s, StepReversal) a run at half the stability limit sustained;
-  // negative: not measured, detector 5 off.
+  // negative: not measured (detector 5 then holds its floor alone, past the step's limit);
+  // infinite: detector 5 off.
   void setReversalSwing(double speed) { reversalSwing_ = speed; }
   // Whether the message computes the exact limit of the step to name the likely cause (on by
   // default). A study's trials need only the verdict: the limit costs up to seconds per
@@ -197,6 +199,7 @@ class BlowUpCheck {
   // near its limit (symplectic Euler's (1 + r) / (1 - r) has no bound as r -> 1), so a rise
   // counts only when dt is past the limit of the linearised step (computed once per dt).
   bool beyondLimitOrMeasured(Simulation& sim, double dt);
+  bool beyondLimit(Simulation& sim, double dt);  // dt past that limit, measured swing or not
   double limitDt_ = -1.0;    // s, the dt beyondLimit_ was computed for
   bool beyondLimit_ = true;
   double limit_ = NAN;       // s, the exact limit computed at limitDt_ (reused by the message)

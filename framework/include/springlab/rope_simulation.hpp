@@ -71,6 +71,8 @@ class RopeSimulation : public Simulation {
   double otherPotentialEnergy(const State& s) const override;
   // The fixed end returns to where the scene put it.
   void onReset() override;
+  std::any saveLabData() const override;
+  void restoreLabData(const std::any& data) override;
   // Lab code calls this after filling masses, springs and state, to start the run.
   void finishBuilding();
   std::vector<Parameter> declareParameters() override;

@@ -12,6 +12,7 @@
 //   - what the viewer, the `sim` command and the studies ask of a scene besides its physics
 //     (name, shapes, sliders, observables, the region to frame): "nothing to show" defaults
 //     that labs override.
+#include <any>
 #include <functional>
 #include <map>
 #include <memory>
@@ -129,6 +130,28 @@ class Simulation {
   void reset();
   // The state reset() returns to (stability estimates use it after a blow-up).
   const State& initialState() const { return initialState_; }
+  // Everything reset() puts back, as the run has it now: the state and forces, the counters,
+  // the sources' and corrections' work, the user's hand, the lab's own data (saveLabData) and
+  // the blow-up check's watch. A computation that resets and steps the scene in the middle of
+  // a run (the blow-up check's stability limit) saves the run first and resumes it after, so
+  // that the run goes on where it was: without the lab's data the rope's moving fixed end
+  // jumped back to where it started. Only the integrator's history is not kept (resumeRun
+  // restarts it, as reset does).
+  struct SavedRun {
+    State state;
+    std::vector<Vec3> force;
+    Stats stats;
+    std::optional<int> grabbed;
+    Vec3 grabTarget = Vec3::Zero();
+    double sourceWork = 0.0, correctionWork = 0.0;
+    bool lastStepWorkKnown = true;
+    std::optional<std::pair<long, double>> sourcePowerAfter;
+    std::optional<Energies> stepEnd;
+    std::any labData;
+    BlowUpCheck blowUpCheck;
+  };
+  SavedRun saveRun() const;
+  void resumeRun(const SavedRun& saved);
   // Turn the blow-up check off for studies that want to watch a method fail.
   void setBlowUpCheck(bool enabled) { blowUpCheckEnabled_ = enabled; }
   bool blowUpCheckEnabled() const { return blowUpCheckEnabled_; }
@@ -182,19 +205,6 @@ class Simulation {
   // instability the corrections cap is seen in it: past its limit a free corner of a cloth
   // lying on a slope jitters at 9 m/s, held by the stretch limit, while the total energy falls.
   double correctionWork() const { return correctionWork_; }
-  // The sources' and the corrections' work so far, to be put back after a computation that
-  // resets the scene in the middle of a run (the blow-up check's limit): without them the
-  // run's energy balance would jump by all the work done.
-  struct EnergyAccounts {
-    double sourceWork = 0.0, correctionWork = 0.0;
-  };
-  EnergyAccounts energyAccounts() const { return {sourceWork_, correctionWork_}; }
-  void restoreEnergyAccounts(const EnergyAccounts& a) {
-    sourceWork_ = a.sourceWork;
-    correctionWork_ = a.correctionWork;
-    sourcePowerAfter_.reset();
-    stepEnd_.reset();
-  }
   // energies() at the end of the last step, kept when counting the corrections computed them
   // (the blow-up check's, right after the step; the state must not have changed since).
   Energies stepEndEnergies() const { return stepEnd_ ? *stepEnd_ : energies(); }
@@ -251,6 +261,11 @@ class Simulation {
   virtual void afterStep(double dt) { (void)dt; }
   // Called by reset() after the initial state is back: restore the lab's own data.
   virtual void onReset() {}
+  // The lab's own data that onReset restores and a step may change (the rope's moving
+  // connection point, the colliders the user drags), for saveRun; restoreLabData puts back
+  // what saveLabData returned. Default: a lab with no data of its own.
+  virtual std::any saveLabData() const { return {}; }
+  virtual void restoreLabData(const std::any& data) { (void)data; }
   // Called by editModel() after the edit, and by markInitialState() once the scene is built:
   // derive again what the lab keeps from the model (the cloth's fast spring pass).
   virtual void onModelEdited() {}

@@ -23,8 +23,8 @@ struct RunSpec {
   // stability limit) and let the blow-up check's passivity detector allow it
   // (BlowUpCheck::setEnergySwing); 0: the detector's default allowance.
   double swingDt = 0.0;
-  // With a swing run: also watch for a capped instability (BlowUpCheck detector 5, from the
-  // step reversal the swing run held); false leaves it off (a test of the other detectors).
+  // Watch for a capped instability (BlowUpCheck detector 5, from the step reversal the swing
+  // run held); false turns it off (a test of the other detectors).
   bool watchReversal = true;
   // A blow-up's message names the likely cause from the step's exact limit (seconds per
   // blow-up on an 80-mass rope); a chart's trials turn it off, they keep only the verdict.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include <springlab/net/net.hpp>
 
@@ -178,6 +180,13 @@ void Net::afterStep(double dt) {
 void Net::onReset() {
   spheres_ = settings.spheres;
   drags_.assign(spheres_.size(), ColliderDrag{});
+}
+
+// The spheres where the user has dragged them.
+std::any Net::saveLabData() const { return std::pair(spheres_, drags_); }
+
+void Net::restoreLabData(const std::any& data) {
+  std::tie(spheres_, drags_) = std::any_cast<std::pair<std::vector<SphereCollider>, std::vector<ColliderDrag>>>(data);
 }
 
 void Net::moveSphere(int sphere, const Vec3& center) {

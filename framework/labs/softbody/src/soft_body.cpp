@@ -1,6 +1,8 @@
 // The soft body system: glue between the framework's Simulation and the exercises. Given.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include <springlab/softbody/softbody.hpp>
 
@@ -143,6 +145,13 @@ void SoftBody::afterStep(double dt) {
 void SoftBody::onReset() {
   p_.obstacles = initialObstacles_;
   drags_.assign(p_.obstacles.size(), ColliderDrag{});
+}
+
+// The obstacles where the user has dragged them.
+std::any SoftBody::saveLabData() const { return std::pair(p_.obstacles, drags_); }
+
+void SoftBody::restoreLabData(const std::any& data) {
+  std::tie(p_.obstacles, drags_) = std::any_cast<std::pair<std::vector<Obstacle>, std::vector<ColliderDrag>>>(data);
 }
 
 std::optional<GroundPlane> SoftBody::floor() const {

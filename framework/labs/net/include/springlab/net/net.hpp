@@ -61,6 +61,8 @@ class Net final : public Simulation {
   void accumulateForces(const State& s, std::vector<Vec3>& f) override;
   void afterStep(double dt) override;
   void onReset() override;
+  std::any saveLabData() const override;
+  void restoreLabData(const std::any& data) override;
   void onModelEdited() override;
   std::vector<Parameter> declareParameters() override;
 

@@ -95,6 +95,8 @@ class SoftBody final : public Simulation {
   double otherPotentialEnergy(const State& s) const override;
   void afterStep(double dt) override;
   void onReset() override;
+  std::any saveLabData() const override;
+  void restoreLabData(const std::any& data) override;
   std::vector<Parameter> declareParameters() override;
 
  private:
