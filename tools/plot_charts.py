@@ -299,6 +299,9 @@ def stability(folder):
         shown = m if 0 < m < inf else top
         if 0 < m < inf:
             ax.scatter([x], [shown], marker=marker, s=90, color=colour, zorder=4)
+        elif m != m:
+            # Not measured (NaN): the trial needs more steps than the chart runs; no marker.
+            pass
         elif m == inf:
             # No limit found: every trial survived, so the limit lies above the largest dt
             # tried. An arrow up off the chart, not a point a reader would take for a limit.
@@ -332,13 +335,15 @@ def stability(folder):
             # show the growth just past the limit (explicit Euler on the ball: the wobble only the
             # air damps grows by e in about 9 minutes at 1.03 times the limit).
             capped = float(r.get("duration_s", 0) or 0) >= 99 * float(facts.get("duration_s", inf))
-            if m == 0:
+            if m != m:
+                text = f"predicted {p:.2g} s;\nnot measured (its trial\nneeds too many steps)"
+            elif m == 0:
                 text = f"predicted {p:.2g} s;\nmeasured: no stable\ndt (arrow down)"
             elif capped and m > 1.05 * p:
                 text = f"measured\n{m / p:.3g} x predicted\n(slow growth unseen\nin {float(r['duration_s']):.3g} s)"
             else:
                 text = f"measured\n{m / p:.3g} x predicted"
-            above = max(shown, p, u if 0 < u < inf else 0)
+            above = max(shown if m == m else 0, p, u if 0 < u < inf else 0)
         else:
             # Unstable at every dt: a trial that survives grows too slowly to show within it.
             text = "predicted: no\nstable dt" + ("; none\nmeasured (arrow down)" if m == 0 else
@@ -350,6 +355,9 @@ def stability(folder):
             where, offset, va = top / 2.5, -6, "top"
         elif m == 0:
             where, offset, va = bottom * 2.5, 6, "bottom"
+        elif m != m:
+            # Not measured: above the prediction's bar, or near the floor when that is off the chart.
+            where, offset, va = max(above, bottom * 1.2), 10, "bottom"
         else:
             where, offset, va = above, 10, "bottom"
         ax.annotate(text, (x, where), textcoords="offset points", xytext=(0, offset),

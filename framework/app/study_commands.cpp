@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include <springlab/studies/resolution.hpp>
 #include <springlab/studies/stability.hpp>
@@ -96,8 +97,12 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
                                   : m.predicted > 0.0       ? "unlimited"
                                                             : "none";
     const std::string undamped = m.undamped > 0.0 && std::isfinite(m.undamped) ? std::to_string(m.undamped) : "-";
+    // measured NaN: not measured, a trial would need more than the chart's steps.
+    std::ostringstream measured;
+    if (std::isnan(m.measured)) measured << "not tried"; else measured << m.measured;
     std::cout << std::setw(22) << m.integrator << std::setw(16) << undamped << std::setw(16) << predicted
-              << std::setw(16) << m.measured << (finite ? std::to_string(m.measured / m.predicted) : "-") << "\n";
+              << std::setw(16) << measured.str()
+              << (finite && !std::isnan(m.measured) ? std::to_string(m.measured / m.predicted) : "-") << "\n";
   }
 
   nlohmann::json facts = sceneFacts(doc, o);

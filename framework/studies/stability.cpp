@@ -70,7 +70,12 @@ CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, cons
   // a runaway of one step far longer than the scene, which says nothing about the method).
   double lo = 0.0, hi = 0.0;
   std::optional<bool> s = stable(firstGuess);
-  if (s && *s) {
+  if (!s) {
+    // Not even the first trial could be run: nothing measured (not "no stable dt").
+    out.measured = NAN;
+    return out;
+  }
+  if (*s) {
     lo = firstGuess;
     for (int k = 0; k < 20 && hi == 0.0; ++k) {
       const double dt = 2.0 * lo;
@@ -85,7 +90,11 @@ CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, cons
     for (int k = 0; k < 40 && lo == 0.0; ++k) {
       const double dt = 0.5 * hi;
       const std::optional<bool> r = stable(dt);
-      if (!r) break;  // too many steps: give up at this bracket
+      if (!r) {
+        // Too many steps to try below hi: the limit lies below it, but where is not measured.
+        out.measured = NAN;
+        return out;
+      }
       if (*r) lo = dt; else hi = dt;
     }
     if (lo == 0.0) {

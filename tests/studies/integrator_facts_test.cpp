@@ -78,6 +78,26 @@ SceneDocument linearOscillator(double springFriction = 0.0) {
   return d;
 }
 
+// A trial the chart cannot afford (more than maxSteps steps) measures nothing: the bisection
+// reports NaN, not 0, which the chart would draw as "no stable dt" (explicit Euler on the ball,
+// predicted 0.05 ms: 303 s of trial need 5.9 million steps, over the 4 million allowed). With
+// room for the trials the same bracket finds the limit.
+TEST(CriticalDt, ATrialTooLongToRunIsNotMeasuredRatherThanUnstable) {
+  const double theory = 2.0 / 10.0;  // symplectic Euler on w = 10 rad/s
+  const double duration = studies::defaultStabilityDuration(10.0);  // 188 s: 940 steps at the limit
+  const studies::CriticalDt cramped =
+      studies::criticalDt(allLabs(), linearOscillator(), "symplectic_euler", duration, theory, 0.002, 500);
+  EXPECT_TRUE(std::isnan(cramped.measured)) << "measured " << cramped.measured << " s with room for no trial";
+  // The first trial fails (20 % past the limit) and the halved one needs 1880 steps: still
+  // not measured, though the limit is known to lie below the first guess.
+  const studies::CriticalDt halved =
+      studies::criticalDt(allLabs(), linearOscillator(), "symplectic_euler", duration, 1.2 * theory, 0.002, 1000);
+  EXPECT_TRUE(std::isnan(halved.measured)) << "measured " << halved.measured << " s";
+  const studies::CriticalDt roomy =
+      studies::criticalDt(allLabs(), linearOscillator(), "symplectic_euler", duration, 1.2 * theory, 0.002, 100000);
+  EXPECT_NEAR(roomy.measured / theory, 1.0, 0.02) << "measured " << roomy.measured << " s";
+}
+
 class CriticalDtOnTheOscillator : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CriticalDtOnTheOscillator, IsWithin2PercentOfTheory) {

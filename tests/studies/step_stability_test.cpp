@@ -503,6 +503,23 @@ TEST(CappedInstability, WithoutASwingRunTheSlopesCornerIsStoppedJustAboveTheLimi
   }
 }
 
+// ---- XPBD on the rope: a limit, and passivity where a swing run measured what it rests holding ----
+// With a fixed number of iterations XPBD's step has a limit on the rope (34 ms). It rests away
+// from the springs' equilibrium, so without a swing run passivity does not hold it; the chart's
+// trials measure the swing at half the limit and do. Past the limit the rope's energy swings
+// hundreds of joules above its start, under the runaway factor: without passivity the chart
+// measured 1.40 times the prediction, with it 1.21.
+TEST(XpbdOnTheRope, PastItsLimitIsStoppedByPassivityWhereASwingWasMeasured) {
+  const SceneDocument rope = shippedScene("rope.json");
+  const double predicted = studies::sceneStepStableDt(allLabs(), rope, "xpbd");
+  ASSERT_TRUE(std::isfinite(predicted) && predicted > 0.0) << predicted;
+  const studies::RunResult below = trialAt(rope, "xpbd", predicted, 0.97);
+  EXPECT_TRUE(below.stable) << below.failure;
+  const studies::RunResult above = trialAt(rope, "xpbd", predicted, 1.3);
+  EXPECT_FALSE(above.stable) << "1.3 x " << predicted << " s must be reported";
+  EXPECT_NE(above.failure.find("passivity"), std::string::npos) << above.failure;
+}
+
 // ---- position Verlet on projected contacts: the ball under the user's sphere ---------------------
 // The contacts set the velocities of the masses they touch after each step. Position Verlet's
 // wrapper kept its own record of the last positions as history and ignored those velocities, so

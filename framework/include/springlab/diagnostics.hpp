@@ -73,9 +73,10 @@ class StepReversal {
 // the stability limit a nonlinear scene often saturates instead of overflowing (springs flip,
 // the state turns to noise at a bounded energy): passivity catches that. And the climb:
 // passivity counted from the lowest energy since energy last came in, for an instability that
-// saturates after the scene has lost most of its start (kClimbFraction). Passivity and the
-// climb are for methods that rest at the scene's static equilibrium
-// (Integrator::restsAtStaticEquilibrium); the others are watched by the first two detectors.
+// saturates after the scene has lost most of its start (kClimbFraction). The climb is for
+// methods that rest at the scene's static equilibrium (Integrator::restsAtStaticEquilibrium);
+// the others (XPBD, projective dynamics) are held to passivity only where a swing run measured
+// the energy they rest holding (setEnergySwing), and otherwise by the first two detectors.
 // And a capped instability (StepReversal): a mode past its limit
 // that a one-sided contact or the stretch limit holds down (a corner of cloth jittering at
 // 4 m/s on the slope, a ball resting on a penalty floor jittering at 3 m/s) loses to them

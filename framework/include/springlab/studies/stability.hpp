@@ -31,7 +31,10 @@ struct CriticalDt {
   double stabilityConstant = 0.0;  // c
   double undamped = 0.0;           // s, c / w_max; 0 when the method has no undamped limit
   double predicted = 0.0;          // s, stepStableDt: 0 no stable dt, +inf no limit
-  double measured = 0.0;           // s
+  // s, the largest dt that survived its trial; 0: every trial failed down to the smallest dt
+  // tried; +inf: every trial survived; NaN: not measured, since a trial below the last failing
+  // dt needs more than maxSteps steps (explicit Euler on the ball: 0.05 ms for 303 s).
+  double measured = 0.0;
   double duration = 0.0;           // s of simulated time per trial
   int trials = 0;
 };
