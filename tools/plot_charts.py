@@ -294,6 +294,8 @@ def stability(folder):
     # The chart's floor: a third below the smallest limit measured or predicted (a prediction
     # far below every measured one, explicit Euler's on the rope, is written, not drawn).
     bottom = min(finite + [top]) / 3
+    # A bisection whose trial needs more steps than the chart runs measured nothing (NaN).
+    not_tried = "not measured (its trial\nneeds too many steps)"
     for x, r, m, p, u in zip(xs, rows, measured, predictions, undamped):
         colour, marker = style(r["integrator"], x)
         shown = m if 0 < m < inf else top
@@ -321,11 +323,12 @@ def stability(folder):
         if p != p:
             # NaN: the step is not smooth where the scene settles (a contact switching there),
             # so it has no linearised limit; only the measured one is drawn.
-            text = "predicted: none (the\nstep is not smooth\nwhere it settles)"
+            text = "predicted: none (the\nstep is not smooth\nwhere it settles)" + (";\n" + not_tried if m != m else "")
             above = shown
         elif p == inf:
             # Stable at every dt the prediction tried: say what the bisection found.
-            text = "predicted: no limit;\nnone found (the arrow:\nabove every trial dt)" if m == inf else f"predicted: no limit;\nfails at {m:.3g} s"
+            text = ("predicted: no limit;\nnone found (the arrow:\nabove every trial dt)" if m == inf
+                    else "predicted: no limit;\n" + not_tried if m != m else f"predicted: no limit;\nfails at {m:.3g} s")
             above = shown
         elif p > 0:
             if p >= bottom:
@@ -336,7 +339,7 @@ def stability(folder):
             # air damps grows by e in about 9 minutes at 1.03 times the limit).
             capped = float(r.get("duration_s", 0) or 0) >= 99 * float(facts.get("duration_s", inf))
             if m != m:
-                text = f"predicted {p:.2g} s;\nnot measured (its trial\nneeds too many steps)"
+                text = f"predicted {p:.2g} s;\n{not_tried}"
             elif m == 0:
                 text = f"predicted {p:.2g} s;\nmeasured: no stable\ndt (arrow down)"
             elif capped and m > 1.05 * p:
@@ -347,6 +350,7 @@ def stability(folder):
         else:
             # Unstable at every dt: a trial that survives grows too slowly to show within it.
             text = "predicted: no\nstable dt" + ("; none\nmeasured (arrow down)" if m == 0 else
+                                                 ";\n" + not_tried if m != m else
                                                  f";\nsurvives its trial\nup to {m:.2g} s (slow\ngrowth unseen)")
             above = shown
         # Under the arrow up where no limit was found (it fills the room above); above the
