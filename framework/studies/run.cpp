@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <utility>
 
@@ -32,44 +34,41 @@ void sample(const Simulation& sim, bool keepPositions, RunResult& out) {
 
 }  // namespace
 
-namespace {
-
-// What a stable run holds: the largest rise of the total energy less the wind's work (and of the
-// step's own, less the corrections' work too: the two energies the passivity detector holds)
-// above its start, and the largest step reversal it sustains (StepReversal), in a run of the
-// scene at dt (half the stability limit), over the run's simulated time but at most 4000 steps;
-// -1 when that run goes non-finite (nothing measured).
-struct Swing {
-  double total = -1.0, own = -1.0;  // J
-  double reversal = -1.0;           // m/s
-};
-Swing measureSwing(const Registry& registry, const RunSpec& spec, double dt) {
-  LoadedScene loaded = registry.loadScene(spec.scene);
+StableSwing measureStableSwing(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                               double stiffnessScale, double dt, double duration) {
+  LoadedScene loaded = registry.loadScene(scene);
   Simulation& sim = *loaded.sim;
-  sim.setIntegrator(registry.makeIntegrator(spec.integrator));
-  scaleSprings(sim, spec.stiffnessScale);
+  sim.setIntegrator(registry.makeIntegrator(integrator));
+  scaleSprings(sim, stiffnessScale);
   sim.setBlowUpCheck(false);
   sim.trackCorrectionWork(true);  // as the check counts it
-  const double duration = spec.dt * static_cast<double>(spec.stepsPerSample) * spec.samples;
-  const long steps = std::clamp(std::lround(duration / dt), 1L, 4000L);
+  const long steps = std::clamp(std::lround(std::ceil(duration / dt)), 1L, kMaxSwingSteps);
   const double start = sim.energyBalance();
-  Swing swing{0.0, 0.0, 0.0};
+  StableSwing swing;
+  swing.total = swing.own = swing.reversal = 0.0;
+  swing.profile.binTime = StepReversal::kWindow * dt;
+  swing.profile.held.reserve(static_cast<std::size_t>(steps / StepReversal::kWindow + 1));
   StepReversal reversal;
   for (long k = 0; k < steps; ++k) {
     sim.operate(dt);
     const double e = sim.energyBalance();
-    if (!std::isfinite(e)) return Swing{};
+    if (!std::isfinite(e)) return StableSwing{};
     swing.own = std::max(swing.own, e - start);
     swing.total = std::max(swing.total, e + sim.correctionWork() - start);
     swing.reversal = std::max(swing.reversal, reversal.record(sim.state.vel));
+    // The profile's bins start at t = 0, as the runs held to it do.
+    const std::size_t bin = static_cast<std::size_t>(std::max(sim.state.time, 0.0) / swing.profile.binTime);
+    if (swing.profile.held.size() <= bin) swing.profile.held.resize(bin + 1, 0.0);
+    swing.profile.held[bin] = std::max(swing.profile.held[bin], reversal.smallestInWindow());
   }
   // Too short a run to fill the reversal's window measured nothing (detector 5 then holds its
   // floor alone, past the step's limit).
-  if (steps < StepReversal::kWindow + 2) swing.reversal = -1.0;
+  if (steps < StepReversal::kWindow + 2) {
+    swing.reversal = -1.0;
+    swing.profile = ReversalProfile{};
+  }
   return swing;
 }
-
-}  // namespace
 
 RunResult runScene(const Registry& registry, const RunSpec& spec) {
   LoadedScene loaded = registry.loadScene(spec.scene);
@@ -78,10 +77,16 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   scaleSprings(sim, spec.stiffnessScale);
   sim.setBlowUpCheck(true);
   sim.setBlowUpExplanation(spec.explainBlowUp);
-  if (spec.swingDt > 0.0) {
-    const Swing swing = measureSwing(registry, spec, spec.swingDt);
-    sim.setEnergySwing(swing.total, swing.own);
-    sim.setReversalSwing(swing.reversal);
+  std::shared_ptr<const StableSwing> swing = spec.swing;
+  if (!swing && spec.swingDt > 0.0) {
+    const double duration = spec.dt * static_cast<double>(spec.stepsPerSample) * spec.samples;
+    swing = std::make_shared<const StableSwing>(
+        measureStableSwing(registry, spec.scene, spec.integrator, spec.stiffnessScale, spec.swingDt, duration));
+  }
+  if (swing) {
+    sim.setEnergySwing(swing->total, swing->own);
+    sim.setReversalSwing(swing->reversal);
+    sim.setReversalProfile(swing->profile);
   }
   if (!spec.watchReversal) sim.setReversalSwing(std::numeric_limits<double>::infinity());
 

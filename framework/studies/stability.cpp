@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <memory>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
 
@@ -19,16 +21,43 @@ namespace {
 // step of 1 s looks calm, 200 crumple the cloth to 9.5 J from 0 J).
 constexpr long kFewestTrialSteps = 200;
 
+// The stable run's swing that a series of trials shares (one bisection, one row of the map),
+// measured at swingDt (0: none) over the trials' duration when the first trial runs.
+class SharedSwing {
+ public:
+  SharedSwing(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+              double stiffnessScale, double swingDt, double duration)
+      : registry_(registry), scene_(scene), integrator_(integrator), stiffnessScale_(stiffnessScale),
+        swingDt_(swingDt), duration_(duration) {}
+  std::shared_ptr<const StableSwing> get() {
+    std::call_once(once_, [&] {
+      if (swingDt_ > 0.0) {
+        swing_ = std::make_shared<const StableSwing>(
+            measureStableSwing(registry_, scene_, integrator_, stiffnessScale_, swingDt_, duration_));
+      }
+    });
+    return swing_;
+  }
+
+ private:
+  const Registry& registry_;
+  const SceneDocument& scene_;
+  std::string integrator_;
+  double stiffnessScale_, swingDt_, duration_;
+  std::once_flag once_;
+  std::shared_ptr<const StableSwing> swing_;
+};
+
 // Does the scene survive `duration` (and at least kFewestTrialSteps) at dt? (nullopt: too
 // many steps to try)
 std::optional<bool> survives(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                             double dt, double duration, long maxSteps, double stiffnessScale, double swingDt) {
+                             double dt, double duration, long maxSteps, double stiffnessScale, SharedSwing& swing) {
   const long steps = std::max(kFewestTrialSteps, std::lround(std::ceil(duration / dt)));
   if (steps > maxSteps) return std::nullopt;
   RunSpec spec{scene, integrator, dt, steps, 1};
   spec.keepPositions = false;
   spec.stiffnessScale = stiffnessScale;
-  spec.swingDt = swingDt;
+  spec.swing = swing.get();
   spec.explainBlowUp = false;  // the bisection needs the verdict only
   return runScene(registry, spec).stable;
 }
@@ -60,9 +89,10 @@ CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, cons
                       double swingDt) {
   CriticalDt out;
   out.integrator = integrator;
+  SharedSwing swing(registry, scene, integrator, stiffnessScale, swingDt, duration);
   auto stable = [&](double dt) {
     ++out.trials;
-    return survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale, swingDt);
+    return survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale, swing);
   };
 
   // Bracket: double while stable, halve while unstable. Up to 2^20 (a million) times the first
@@ -179,8 +209,12 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
 
   // Every cell is one run over the same simulated time, its passivity detector allowing the
   // swing measured at half the limit of its stiffness.
-  std::vector<double> swingDts;
-  for (double limit : map.predicted) swingDts.push_back(std::isfinite(limit) && limit > 0.0 ? 0.5 * limit : 0.0);
+  std::vector<std::unique_ptr<SharedSwing>> swings;
+  for (std::size_t r = 0; r < map.scales.size(); ++r) {
+    const double limit = map.predicted[r];
+    const double swingDt = std::isfinite(limit) && limit > 0.0 ? 0.5 * limit : 0.0;
+    swings.push_back(std::make_unique<SharedSwing>(registry, scene, map.integrator, map.scales[r], swingDt, map.duration));
+  }
   for (double s : map.scales) {
     for (int j = 0; j < o.dtCount; ++j) {
       const double exponent = -1.5 + 3.0 * j / std::max(1, o.dtCount - 1);
@@ -191,7 +225,7 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
     StabilityMapCell& cell = map.cells[i];
     const std::optional<bool> ok =
         survives(registry, scene, map.integrator, cell.dt, map.duration, o.maxSteps, cell.stiffnessScale,
-                 swingDts[static_cast<std::size_t>(i) / static_cast<std::size_t>(std::max(1, o.dtCount))]);
+                 *swings[static_cast<std::size_t>(i) / static_cast<std::size_t>(std::max(1, o.dtCount))]);
     cell.run = ok.has_value();
     cell.stable = ok.value_or(true);
   }, o.progress ? "stability map cells" : "");

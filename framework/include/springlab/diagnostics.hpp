@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "springlab/math.hpp"
@@ -51,6 +52,9 @@ class StepReversal {
   double record(const std::vector<Vec3>& velocities);
   // Forgets the steps recorded (a state not made by the step: reset, a drag).
   void restart() { count_ = 0; }
+  // The smallest reversal over the last kWindow steps, dying out or not (0 until that many):
+  // what a stable run's profile records (ReversalProfile).
+  double smallestInWindow() const;
   // The mass whose reversal was largest in the last step recorded.
   int lastMass() const { return lastMass_; }
 
@@ -59,6 +63,19 @@ class StepReversal {
   std::array<double, kWindow> recent_{};
   int count_ = 0;
   int lastMass_ = -1;
+};
+
+// The step reversal a stable run (at half the limit) held along its simulated time: per bin of
+// StepReversal::kWindow steps, the largest smallest-in-window. Detector 5 holds a run to it at
+// the same time: the reversal a stable scene sustains dies out over seconds (the cloth settling
+// on the slope: 2e-4 m/s at 1 s, 2e-7 at 4 s), a capped instability's stays (5e-3 m/s at 1.03
+// times the limit), so its largest over the whole run lets the latter through.
+struct ReversalProfile {
+  double binTime = 0.0;      // s
+  std::vector<double> held;  // m/s, one per bin from t = 0
+  // The largest within kReach bins of time t; past the end, of the last kReach bins.
+  double near(double t) const;
+  static constexpr long kReach = 2;
 };
 
 // Watches a run, with five detectors: a non-finite state; kinetic plus elastic plus other
@@ -121,10 +138,13 @@ class BlowUpCheck {
   // Detector 5: motion that reverses every step, sustained over StepReversal::kWindow steps,
   // by more than kReversalMargin times the most the scene sustained at half the limit
   // (setReversalSwing) and kReversalFloor of the speed the energy scale stands for
-  // (sqrt(2 scale / mass): 33 m/s on the 32 x 32 cloth); without a swing run, by more than
-  // that floor while dt is past the step's limit.
+  // (sqrt(2 scale / mass): 33 m/s on the 32 x 32 cloth); with the swing run's profile
+  // (setReversalProfile), by kReversalMargin times what it held at the same time and
+  // kProfileFloor of that speed; without a swing run, by more than kReversalFloor. Only while
+  // dt is past the step's limit: below it the reversal is a contact's chatter, not the step's.
   static constexpr double kReversalMargin = 64.0;
   static constexpr double kReversalFloor = 1e-3;
+  static constexpr double kProfileFloor = 1e-5;
   static constexpr int kFastWindow = 64;
   static constexpr double kFastSwingMargin = 2.0;
   static constexpr double kClimbFraction = 0.02;
@@ -161,6 +181,9 @@ class BlowUpCheck {
   // negative: not measured (detector 5 then holds its floor alone, past the step's limit);
   // infinite: detector 5 off.
   void setReversalSwing(double speed) { reversalSwing_ = speed; }
+  // The reversal that run held along its time (ReversalProfile): detector 5 then holds a run
+  // to it at the same time instead of to its largest. Empty: not measured.
+  void setReversalProfile(ReversalProfile profile) { profile_ = std::move(profile); }
   // Whether the message computes the exact limit of the step to name the likely cause (on by
   // default). A study's trials need only the verdict: the limit costs up to seconds per
   // blow-up (an 80-mass rope: 10 s), and a chart meets dozens of them.
@@ -194,6 +217,7 @@ class BlowUpCheck {
   bool turningMassIsDamped(Simulation& sim);
   int undampedMass_ = -1;  // the last mass turningMassIsDamped found undamped
   double reversalSwing_ = -1.0;  // m/s, setReversalSwing
+  ReversalProfile profile_;      // setReversalProfile
   double speedScale_ = 0.0;      // m/s, sqrt(2 energy scale / total mass)
   StepReversal reversal_;
   // Without a measured swing the allowance cannot know how far a stable step's energy swings

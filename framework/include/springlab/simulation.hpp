@@ -162,6 +162,8 @@ class Simulation {
   void setEnergySwing(double total, double own) { blowUpCheck_.setEnergySwing(total, own); }
   // The largest step reversal a run at half the limit sustained (BlowUpCheck::setReversalSwing).
   void setReversalSwing(double speed) { blowUpCheck_.setReversalSwing(speed); }
+  // What that run held along its time (BlowUpCheck::setReversalProfile).
+  void setReversalProfile(ReversalProfile held) { blowUpCheck_.setReversalProfile(std::move(held)); }
   // Whether a blow-up's message names the likely cause from the step's exact limit
   // (BlowUpCheck::setExplainCause; studies' trials turn it off, they need only the verdict).
   void setBlowUpExplanation(bool explain) { blowUpCheck_.setExplainCause(explain); }

@@ -2,14 +2,32 @@
 // One study run: a scene document, an integrator and a dt, stepped for a simulated duration
 // with the blow-up check on, sampled at fixed times. Every study (work-precision, stability,
 // resolution, advisor) is made of these.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "springlab/diagnostics.hpp"
 #include "springlab/registry.hpp"
 #include "springlab/scene_document.hpp"
 
 namespace springlab::studies {
+
+// What a stable run holds: in a run of the scene at dt (half the stability limit) over a
+// trial's simulated time, the largest rise of the total energy less the wind's work (and of the
+// step's own, less the corrections' work too: the two energies the passivity detector holds)
+// above its start, the largest step reversal it sustains (StepReversal) and the reversal along
+// its time (ReversalProfile). Negative: not measured (that run went non-finite; a reversal:
+// too short a run to fill the window).
+struct StableSwing {
+  double total = -1.0, own = -1.0;  // J
+  double reversal = -1.0;           // m/s
+  ReversalProfile profile;
+};
+// At most kMaxSwingSteps steps (past them, detector 5 holds a run to the profile's last bins).
+constexpr long kMaxSwingSteps = 4'000'000;
+StableSwing measureStableSwing(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                               double stiffnessScale, double dt, double duration);
 
 struct RunSpec {
   SceneDocument scene;
@@ -23,6 +41,9 @@ struct RunSpec {
   // stability limit) and let the blow-up check's passivity detector allow it
   // (BlowUpCheck::setEnergySwing); 0: the detector's default allowance.
   double swingDt = 0.0;
+  // That swing measured beforehand, for runs that share it (a bisection's trials); null: measured
+  // here when swingDt > 0, over this run's time.
+  std::shared_ptr<const StableSwing> swing = nullptr;
   // Watch for a capped instability (BlowUpCheck detector 5, from the step reversal the swing
   // run held); false turns it off (a test of the other detectors).
   bool watchReversal = true;

@@ -58,8 +58,8 @@ double stabilityTrialDuration(const Registry& registry, const SceneDocument& sce
                               double predicted, double atLeast);
 
 // Largest stable dt of one integrator, bisection from a first guess. With swingDt > 0 (half
-// the predicted limit) each trial's passivity detector allows the integrator's energy swing
-// measured at swingDt (RunSpec::swingDt).
+// the predicted limit) each trial's blow-up check allows what a stable run holds, measured once
+// at swingDt over `duration` and shared by the trials (StableSwing, RunSpec::swing).
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                       double duration, double firstGuess, double tolerance = 0.005, long maxSteps = 4000000,
                       double stiffnessScale = 1.0, double swingDt = 0.0);
