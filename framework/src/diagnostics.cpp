@@ -79,7 +79,7 @@ double StepReversal::record(const std::vector<Vec3>& velocities) {
     half = std::max(half, value);
   }
   if (newer < older) return 0.0;
-  return *std::min_element(recent_.begin(), recent_.end());
+  return smallestInWindow();
 }
 
 double StepReversal::smallestInWindow() const {
