@@ -103,7 +103,7 @@ struct ReversalProfile {
 // one. On a mode at a fraction r = dt / limit of its limit symplectic Euler's energy swings
 // by a factor up to (1 + r) / (1 - r) of the mode's energy (a Verlet method's 1 / (1 - r^2),
 // the damped methods' less): 2 / (1 - r) - 1 = 3 at r = 1/2, 65 at r = 0.97. So the swing
-// measured in a short run at half the limit (setEnergySwing), times kSwingMargin = 64
+// measured in a run at half the limit (setEnergySwing), times kSwingMargin = 64
 // (twice the ratio 65 / 3 between the two dts, rounded up), bounds the swing of any stable
 // run up to 0.97 of the limit; the energy a saturated instability gains, a good part of the
 // scene's own, is far above it. Without a measured swing (the viewer) the allowance is
@@ -171,7 +171,7 @@ class BlowUpCheck {
 
   double energyScale() const { return energyScale_; }
   // The integrator's own energy swing on this scene (J: the largest rise of the total energy
-  // less the sources' work above its start in a short run at half the stability limit), and the
+  // less the sources' work above its start in a run at half the stability limit), and the
   // same for the step's own energy (less the corrections' work too); negative: not measured.
   void setEnergySwing(double total, double own) {
     energySwing_ = total;

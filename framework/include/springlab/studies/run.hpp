@@ -37,9 +37,9 @@ struct RunSpec {
   int samples = 0;             // samples after t = 0; the run lasts samples * stepsPerSample steps
   double stiffnessScale = 1.0; // every spring's k is multiplied by this (stability maps)
   bool keepPositions = true;   // store every mass's position at each sample
-  // s, > 0: first measure the integrator's energy swing in a short run at this dt (half the
-  // stability limit) and let the blow-up check's passivity detector allow it
-  // (BlowUpCheck::setEnergySwing); 0: the detector's default allowance.
+  // s, > 0: first measure what a stable run holds (StableSwing) in a run at this dt (half the
+  // stability limit) over this run's time, and let the blow-up check allow it
+  // (BlowUpCheck::setEnergySwing, setReversalSwing, setReversalProfile); 0: the defaults.
   double swingDt = 0.0;
   // That swing measured beforehand, for runs that share it (a bisection's trials); null: measured
   // here when swingDt > 0, over this run's time.
