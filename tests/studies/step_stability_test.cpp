@@ -482,6 +482,23 @@ TEST(CappedInstability, TheDroppedClothSurvivesJustBelowAndIsStoppedByItsJitterJ
   }
 }
 
+// The midpoint rule on the dropped cloth: past its limit a run may miss its instability by luck
+// (the scene's contacts make it chaotic: at 1.09 times the limit one run fails by passivity at
+// 0.27 s and a run at a dt 1.5e-9 larger runs to the end), and the bisection, trusting one run,
+// measured 1.09 times the prediction. A surviving trial counts only where its twin at a dt one
+// part in a million smaller survives too.
+TEST(CriticalDt, AStableVerdictDoesNotHangOnRoundOff) {
+  const SceneDocument dropped = shippedScene("net_sphere_drop.json");
+  const double predicted = studies::sceneStepStableDt(allLabs(), dropped, "midpoint");
+  ASSERT_TRUE(std::isfinite(predicted) && predicted > 0.0) << predicted;
+  const double w = studies::sceneLanczosEstimate(allLabs(), dropped);
+  const double duration =
+      studies::stabilityTrialDuration(allLabs(), dropped, "midpoint", predicted, studies::defaultStabilityDuration(w));
+  const studies::CriticalDt m =
+      studies::criticalDt(allLabs(), dropped, "midpoint", duration, predicted, 0.005, 4000000, 1.0, 0.5 * predicted);
+  EXPECT_NEAR(m.measured / predicted, 1.0, 0.05) << "measured " << m.measured << " s, predicted " << predicted << " s";
+}
+
 // Velocity Verlet on the slope: past its limit the cloth's corner under the sphere jitters by
 // 5e-3 m/s a step for seconds, held by the contact. The run at half the limit reversed by more
 // than a 64th of that early on (2e-4 m/s at 1 s, settling), and by 2e-7 m/s at 4 s; held to its
@@ -513,6 +530,27 @@ TEST(CappedInstability, WithoutASwingRunTheSlopesCornerIsStoppedJustAboveTheLimi
       EXPECT_NE(run.failure.find("no swing was measured"), std::string::npos) << run.failure;
     }
   }
+}
+
+// ---- The integrator's own swing: its rise from the low, not from the start ------------------------
+// The flag under explicit Euler: the dampers take energy out early on faster than the step swings
+// it up, so at half the limit its energy never rises above its start (the swing held to the start
+// was 6e-6 J), while at 0.8 times the limit it rose 4.7e-4 J from its low when the stretch limit
+// engaged at 0.1 s, gave it back at once and ran calmly to the end; passivity stopped it (the
+// chart measured 0.75 times the limit). Held to the rise from the swing run's low (1.3e-4 J), 0.8
+// and 0.9 times run to the end. Just below the limit the flag still fails: at 0.97 times its
+// flapping passes a state whose own limit is lower (0.966 times the settled one, at 0.5 s), and
+// the energy then rises by joules.
+TEST(EnergySwing, ADampedFlagIsAllowedItsStepsRiseFromTheLowNotFromTheStart) {
+  const SceneDocument flag = shippedScene("net_flag.json");
+  const double predicted = studies::sceneStepStableDt(allLabs(), flag, "explicit_euler");
+  ASSERT_TRUE(std::isfinite(predicted) && predicted > 0.0) << predicted;
+  for (const double factor : {0.8, 0.9}) {
+    const studies::RunResult run = trialAt(flag, "explicit_euler", predicted, factor);
+    EXPECT_TRUE(run.stable) << factor << " x " << predicted << " s: " << run.failure;
+  }
+  const studies::RunResult above = trialAt(flag, "explicit_euler", predicted, 1.03);
+  EXPECT_FALSE(above.stable) << "1.03 x " << predicted << " s must be reported";
 }
 
 // ---- XPBD on the rope: a limit, and passivity where a swing run measured what it rests holding ----

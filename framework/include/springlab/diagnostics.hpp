@@ -171,8 +171,8 @@ class BlowUpCheck {
 
   double energyScale() const { return energyScale_; }
   // The integrator's own energy swing on this scene (J: the largest rise of the total energy
-  // less the sources' work above its start in a run at half the stability limit), and the
-  // same for the step's own energy (less the corrections' work too); negative: not measured.
+  // less the sources' work above its lowest so far in a run at half the stability limit), and
+  // the same for the step's own energy (less the corrections' work too); negative: not measured.
   void setEnergySwing(double total, double own) {
     energySwing_ = total;
     ownSwing_ = own;

@@ -16,8 +16,9 @@ namespace springlab::studies {
 // What a stable run holds: in a run of the scene at dt (half the stability limit) over a
 // trial's simulated time, the largest rise of the total energy less the wind's work (and of the
 // step's own, less the corrections' work too: the two energies the passivity detector holds)
-// above its start, the largest step reversal it sustains (StepReversal) and the reversal along
-// its time (ReversalProfile). Negative: not measured (that run went non-finite; a reversal:
+// above its lowest so far (not its start: a damped scene can lose energy faster than the step
+// swings it up, and hide the rise), the largest step reversal it sustains (StepReversal) and
+// the reversal along its time (ReversalProfile). Negative: not measured (that run went non-finite; a reversal:
 // too short a run to fill the window).
 struct StableSwing {
   double total = -1.0, own = -1.0;  // J
