@@ -18,8 +18,8 @@ namespace springlab::studies {
 // step's own, less the corrections' work too: the two energies the passivity detector holds)
 // above its lowest so far (not its start: a damped scene can lose energy faster than the step
 // swings it up, and hide the rise), the largest step reversal it sustains (StepReversal) and
-// the reversal along its time (ReversalProfile). Negative: not measured (that run went non-finite; a reversal:
-// too short a run to fill the window).
+// the reversal along its time (ReversalProfile). Negative: not measured (that run went
+// non-finite; a reversal: too short a run to fill the window).
 struct StableSwing {
   double total = -1.0, own = -1.0;  // J
   double reversal = -1.0;           // m/s
