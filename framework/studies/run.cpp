@@ -49,7 +49,7 @@ StableSwing measureStableSwing(const Registry& registry, const SceneDocument& sc
   // rises above its start, then rises 1.3e-4 J from its low when the stretch limit engages;
   // held to its rise above the start, a run at 0.8 times the limit was stopped by passivity
   // for 4.7e-4 J it gave back at once).
-  double ownLow = sim.energyBalance(), totalLow = ownLow;
+  double ownLow = sim.energyBalance(), totalLow = ownLow + sim.correctionWork();
   StableSwing swing;
   swing.total = swing.own = swing.reversal = 0.0;
   swing.profile.binTime = StepReversal::kWindow * dt;

@@ -49,8 +49,8 @@ class SharedSwing {
   std::shared_ptr<const StableSwing> swing_;
 };
 
-// Does the scene survive `duration` (and at least kFewestTrialSteps) at dt? (nullopt: too
-// many steps to try)
+// Does the scene survive `duration` (and at least kFewestTrialSteps) at dt, and so does its
+// twin at a dt kTwinOffset smaller? (nullopt: too many steps to try)
 std::optional<bool> survives(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                              double dt, double duration, long maxSteps, double stiffnessScale, SharedSwing& swing) {
   const long steps = std::max(kFewestTrialSteps, std::lround(std::ceil(duration / dt)));
