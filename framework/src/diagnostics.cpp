@@ -86,6 +86,22 @@ double StepReversal::smallestInWindow() const {
   return count_ < kWindow + 2 ? 0.0 : *std::min_element(recent_.begin(), recent_.end());
 }
 
+namespace {
+// The largest of per-bin values within ReversalProfile::kReach bins of time t.
+double largestNear(const std::vector<double>& values, double binTime, double t) {
+  if (values.empty() || !(binTime > 0.0)) return 0.0;
+  const long last = static_cast<long>(values.size()) - 1;
+  const long bin = std::min(static_cast<long>(std::max(t, 0.0) / binTime), last);
+  double largest = 0.0;
+  for (long j = std::max(0L, bin - ReversalProfile::kReach); j <= std::min(last, bin + ReversalProfile::kReach); ++j) {
+    largest = std::max(largest, values[static_cast<std::size_t>(j)]);
+  }
+  return largest;
+}
+}  // namespace
+
+double ReversalProfile::kineticNear(double t) const { return largestNear(kinetic, binTime, t); }
+
 double ReversalProfile::near(double t) const {
   if (held.empty() || !(binTime > 0.0)) return 0.0;
   const long last = static_cast<long>(held.size()) - 1;
@@ -459,6 +475,35 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       }
       os << "; dt is past the step's limit); a contact or the stretch limit keeps it from growing, so the energy does not show it";
       why = os.str();
+    }
+  }
+  // Detector 6, held motion: kinetic energy the swing run had damped away at the same time,
+  // kept (its mean over a window, so a mode's exchange with its springs does not hide it). Past
+  // the step's limit only, as detector 5, and only against a swing run's profile; off with
+  // detector 5 (an infinite reversal swing).
+  if (why.empty() && sim.integrator().restsAtStaticEquilibrium() && !profile_.kinetic.empty() &&
+      std::isfinite(reversalSwing_)) {
+    if (lastStep_ + 1 != sim.stats.steps) kineticCount_ = 0;
+    double kinetic = 0.0;
+    for (int i = 0; i < sim.numOfMasses(); ++i) kinetic += 0.5 * sim.masses[i].m * sim.state.vel[i].squaredNorm();
+    kinetics_[static_cast<std::size_t>(kineticCount_ % StepReversal::kWindow)] = kinetic;
+    ++kineticCount_;
+    if (kineticCount_ >= StepReversal::kWindow) {
+      double mean = 0.0;
+      for (double k : kinetics_) mean += k;
+      mean /= StepReversal::kWindow;
+      const double swing = profile_.kineticNear(sim.state.time);
+      const double allowed = std::max(kMotionMargin * swing, kMotionFloor * energyScale_);
+      if (mean > allowed && beyondLimit(sim, dt)) {
+        std::ostringstream os;
+        os << "held motion: the masses kept " << mean << " J of kinetic energy on average over the last "
+           << StepReversal::kWindow << " steps, where the run at half the stability limit held at most " << swing
+           << " J near t = " << sim.state.time << " s (allowed " << allowed << " J: " << kMotionMargin
+           << " times that, and at least " << kMotionFloor
+           << " of the energy scale; dt is past the step's limit); a mode past its limit grows until a contact or "
+              "the springs' nonlinearity holds it, so the energy does not show it";
+        why = os.str();
+      }
     }
   }
   if (why.empty()) {

@@ -54,6 +54,7 @@ StableSwing measureStableSwing(const Registry& registry, const SceneDocument& sc
   swing.total = swing.own = swing.reversal = 0.0;
   swing.profile.binTime = StepReversal::kWindow * dt;
   swing.profile.held.reserve(static_cast<std::size_t>(steps / StepReversal::kWindow + 1));
+  swing.profile.kinetic.reserve(swing.profile.held.capacity());
   StepReversal reversal;
   for (long k = 0; k < steps; ++k) {
     sim.operate(dt);
@@ -69,6 +70,10 @@ StableSwing measureStableSwing(const Registry& registry, const SceneDocument& sc
     const std::size_t bin = static_cast<std::size_t>(std::max(sim.state.time, 0.0) / swing.profile.binTime);
     if (swing.profile.held.size() <= bin) swing.profile.held.resize(bin + 1, 0.0);
     swing.profile.held[bin] = std::max(swing.profile.held[bin], reversal.smallestInWindow());
+    if (swing.profile.kinetic.size() <= bin) swing.profile.kinetic.resize(bin + 1, 0.0);
+    double kinetic = 0.0;
+    for (int i = 0; i < sim.numOfMasses(); ++i) kinetic += 0.5 * sim.masses[i].m * sim.state.vel[i].squaredNorm();
+    swing.profile.kinetic[bin] = std::max(swing.profile.kinetic[bin], kinetic);
   }
   // Too short a run to fill the reversal's window measured nothing (detector 5 then holds its
   // floor alone, past the step's limit).

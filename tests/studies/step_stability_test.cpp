@@ -222,7 +222,8 @@ TEST(DampedChainAtTheLimit, APassiveChainThatGainsEnergyIsStoppedByPassivity) {
 // limit it climbs back by 5 to 9 J and swings there, never near its start: only the climb
 // from its low (BlowUpCheck detector 4) sees it, 10 s into the 58 s trial (the chart measured
 // 1.18 times the prediction before). Its masses' motion turns back every step meanwhile, and
-// detector 5 sees that first (8.7 s): the climb is held to it with detector 5 off.
+// detector 5 sees that first (8.7 s), detector 6 its motion held at 9.4 s: the climb is held
+// to it with both off.
 TEST(RopeAtTheLimit, TheMidpointRuleClimbsBackFromItsLowAndIsStopped) {
   const SceneDocument rope = shippedScene("rope.json");
   expectStableBelowAndReportedAbove(rope, "midpoint");
@@ -387,6 +388,16 @@ TEST(DroppedCube, IsLinearisedAtItsRestOnTheFloorNotAtItsImpact) {
     EXPECT_NEAR(predicted / oracle, 1.0, 0.02) << method << ": predicted " << predicted << " s, at rest " << oracle << " s";
   }
   expectStableBelowAndReportedAbove(cube, "velocity_verlet");
+}
+
+// Explicit Euler on the resting cube: past its limit a mode at its own frequency grows until
+// the floor holds it (gamma / w^2 < dt), not the every-step reversal of detector 5. At 1.03 times
+// the limit a corner keeps moving (0.08 J held where the run at half the limit held 1.3e-3 J
+// at 3.4 s, and comes to rest), and the runs between 1.03 and 1.11 times went to the end (the
+// chart measured 1.111 times). Detector 6 sees the motion held.
+TEST(CappedInstability, ExplicitEulerOnTheRestingCubeIsHeldMotionNotReversal) {
+  const studies::RunResult above = expectStableBelowAndReportedAbove(shippedScene("softbody_cube_asc.json"), "explicit_euler");
+  EXPECT_NE(above.failure.find("held motion"), std::string::npos) << above.failure;
 }
 
 // ---- the hanging cloth: an instability that saturates --------------------------------------------

@@ -70,15 +70,18 @@ class StepReversal {
 // the same time: the reversal a stable scene sustains dies out over seconds (the cloth settling
 // on the slope: 2e-4 m/s at 1 s, 2e-7 at 4 s), a capped instability's stays (5e-3 m/s at 1.03
 // times the limit), so its largest over the whole run lets the latter through.
+// It also keeps the largest kinetic energy per bin, which detector 6 holds a run to.
 struct ReversalProfile {
-  double binTime = 0.0;      // s
-  std::vector<double> held;  // m/s, one per bin from t = 0
+  double binTime = 0.0;         // s
+  std::vector<double> held;     // m/s, one per bin from t = 0
+  std::vector<double> kinetic;  // J, the largest kinetic energy in each bin
   // The largest within kReach bins of time t; past the end, of the last kReach bins.
   double near(double t) const;
+  double kineticNear(double t) const;  // the same for the kinetic energy
   static constexpr long kReach = 2;
 };
 
-// Watches a run, with five detectors: a non-finite state; kinetic plus elastic plus other
+// Watches a run, with six detectors: a non-finite state; kinetic plus elastic plus other
 // potential energy (otherPotentialEnergy: ground, gas) grown far beyond the energy the scene
 // could ever hold (its initial energy plus the work gravity can do: the runaway factor); and
 // passivity: a scene that puts no energy in (no wind, pump, moving pinned mass or user drag)
@@ -142,6 +145,16 @@ class BlowUpCheck {
   // (setReversalProfile), by kReversalMargin times what it held at the same time and
   // kProfileFloor of that speed; without a swing run, by more than kReversalFloor. Only while
   // dt is past the step's limit: below it the reversal is a contact's chatter, not the step's.
+  // Detector 6, held motion: with the swing run's profile, past the step's limit, a mean
+  // kinetic energy over StepReversal::kWindow steps above kMotionMargin times the most the swing
+  // run held near the same time and kMotionFloor of the energy scale. Explicit Euler's capped
+  // instability does not turn back every step: past its limit a mode at its own frequency grows
+  // (gamma / w^2 < dt) until a contact holds it. The cube resting on its floor at 1.04 times
+  // the limit: a corner keeps moving at up to 3.3 m/s for minutes, 0.2 J above the rest, while
+  // at 0.9 times the cube comes to rest (1e-28 J); its reversal, 1.4e-4 m/s, stays below
+  // detector 5's floor.
+  static constexpr double kMotionMargin = 64.0;
+  static constexpr double kMotionFloor = 1e-7;
   static constexpr double kReversalMargin = 64.0;
   static constexpr double kReversalFloor = 1e-3;
   static constexpr double kProfileFloor = 1e-5;
@@ -179,7 +192,7 @@ class BlowUpCheck {
   }
   // The largest reversal (m/s, StepReversal) a run at half the stability limit sustained;
   // negative: not measured (detector 5 then holds its floor alone, past the step's limit);
-  // infinite: detector 5 off.
+  // infinite: detectors 5 and 6 off.
   void setReversalSwing(double speed) { reversalSwing_ = speed; }
   // The reversal that run held along its time (ReversalProfile): detector 5 then holds a run
   // to it at the same time instead of to its largest. Empty: not measured.
@@ -220,6 +233,9 @@ class BlowUpCheck {
   ReversalProfile profile_;      // setReversalProfile
   double speedScale_ = 0.0;      // m/s, sqrt(2 energy scale / total mass)
   StepReversal reversal_;
+  // Detector 6: the kinetic energies of the last StepReversal::kWindow steps (a ring).
+  std::array<double, StepReversal::kWindow> kinetics_{};
+  long kineticCount_ = 0;
   // Without a measured swing the allowance cannot know how far a stable step's energy swings
   // near its limit (symplectic Euler's (1 + r) / (1 - r) has no bound as r -> 1), so a rise
   // counts only when dt is past the limit of the linearised step (computed once per dt).

@@ -45,8 +45,8 @@ struct RunSpec {
   // That swing measured beforehand, for runs that share it (a bisection's trials); null: measured
   // here when swingDt > 0, over this run's time.
   std::shared_ptr<const StableSwing> swing = nullptr;
-  // Watch for a capped instability (BlowUpCheck detector 5, from the step reversal the swing
-  // run held); false turns it off (a test of the other detectors).
+  // Watch for a capped instability (BlowUpCheck detectors 5 and 6, from the step reversal and
+  // the kinetic energy the swing run held); false turns both off (a test of the other detectors).
   bool watchReversal = true;
   // A blow-up's message names the likely cause from the step's exact limit (seconds per
   // blow-up on an 80-mass rope); a chart's trials turn it off, they keep only the verdict.
