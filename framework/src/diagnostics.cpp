@@ -102,17 +102,7 @@ double largestNear(const std::vector<double>& values, double binTime, double t) 
 
 double ReversalProfile::kineticNear(double t) const { return largestNear(kinetic, binTime, t); }
 
-double ReversalProfile::near(double t) const {
-  if (held.empty() || !(binTime > 0.0)) return 0.0;
-  const long last = static_cast<long>(held.size()) - 1;
-  // Past the end: the last bin, so the window is the last kReach + 1 bins.
-  const long bin = std::min(static_cast<long>(std::max(t, 0.0) / binTime), last);
-  double largest = 0.0;
-  for (long j = std::max(0L, bin - kReach); j <= std::min(last, bin + kReach); ++j) {
-    largest = std::max(largest, held[static_cast<std::size_t>(j)]);
-  }
-  return largest;
-}
+double ReversalProfile::near(double t) const { return largestNear(held, binTime, t); }
 
 void BlowUpCheck::restartClimb(double energy) {
   low_ = energy;
