@@ -13,6 +13,8 @@
 #include <springlab/energy_source.hpp>
 #include <springlab/recorder.hpp>
 #include <springlab/registry.hpp>
+#include <springlab/step_stability.hpp>
+#include <springlab/studies/run.hpp>
 
 #include "study_commands.hpp"
 #ifdef SPRINGLAB_HAS_VIEWER
@@ -53,6 +55,37 @@ void printProfile(const Simulation& sim, long steps) {
   std::cout << "\n";
 }
 
+// Past the step's stability limit a run can be unstable while its energy does not show it: a
+// contact or the stretch limit caps the growing mode, and the masses reverse every step or keep
+// moving where a stable step comes to rest (detectors 5 and 6, diagnostics.cpp). What tells
+// that from the scene's own motion is the same scene at half the limit, the reference the
+// stability chart's trials are held to: `sim` measures it too, for as long as the run, when dt
+// is past the limit (the cube under the Runge-Kutta method at 1.03 times its limit ran to the
+// end without it). The limit is the step's own (stepStableDt), computed once and given to the
+// check. Nothing is measured at or below the limit, for a method with no stable dt or an
+// unlimited one, or where the limit cannot be computed (a student's step still missing: the
+// run itself then says so).
+void watchPastTheLimit(const Registry& registry, const SceneDocument& document, Simulation& sim, double dt,
+                       long steps) {
+  double limit = NAN;
+  try {
+    limit = stepStableDt(sim);
+  } catch (const std::exception&) {
+    limit = NAN;
+  }
+  sim.reset();
+  if (!(limit > 0.0) || !std::isfinite(limit)) return;
+  sim.setKnownStepLimit(limit);
+  if (dt <= limit) return;
+  std::cerr << "springlab sim: dt = " << dt << " s is " << dt / limit << " times the step's stability limit ("
+            << limit << " s); the run is held to the same scene at half the limit, measured first\n";
+  const studies::StableSwing swing = studies::measureStableSwing(registry, document, sim.integrator().name(), 1.0,
+                                                                 0.5 * limit, dt * static_cast<double>(steps));
+  sim.setEnergySwing(swing.total, swing.own);
+  sim.setReversalSwing(swing.reversal);
+  sim.setReversalProfile(swing.profile);
+}
+
 int runSim(const Registry& registry, const SimOptions& o) {
   // Load the scene and apply the command line's overrides.
   SceneDocument document = SceneDocument::read(o.scene);
@@ -62,6 +95,7 @@ int runSim(const Registry& registry, const SimOptions& o) {
   if (!o.integrator.empty()) sim.setIntegrator(registry.makeIntegrator(o.integrator));
   const double dt = o.dt > 0.0 ? o.dt : scene.settings.dt;
   sim.setBlowUpCheck(!o.noBlowUpCheck);
+  if (!o.noBlowUpCheck) watchPastTheLimit(registry, document, sim, dt, o.steps);
   sim.profile.setEnabled(o.profile);
 
   // Step, saving every saveEvery-th frame (and the first and the last). The output's folder
