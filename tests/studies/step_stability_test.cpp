@@ -686,5 +686,22 @@ TEST(LandingCloth, MidpointRuleHoldsItsLimitFromRestAndFailsEarlierInTheLanding)
   EXPECT_NE(landing.find("in a state stiffer than the rest"), std::string::npos) << landing;
 }
 
+// The chart's trials from the rest (StabilityOptions::fromRest): each runs the method at half
+// its limit for 3 s first. From the start the bisection finds the landing (0.968 times the
+// prediction); from the rest it finds the prediction.
+TEST(LandingCloth, TheChartFromRestMeasuresThePredictionAndFromTheStartTheLanding) {
+  const SceneDocument slope = shippedScene("net_sphere_slope_weak_wind.json");
+  studies::StabilityOptions o;
+  o.integrators = {"midpoint"};
+  o.threads = 1;
+  o.progress = false;
+  const studies::CriticalDt fromStart = studies::stability(allLabs(), slope, o).methods.at(0);
+  o.fromRest = 3.0;
+  const studies::CriticalDt fromRest = studies::stability(allLabs(), slope, o).methods.at(0);
+  ASSERT_TRUE(std::isfinite(fromRest.predicted) && fromRest.predicted > 0.0) << fromRest.predicted;
+  EXPECT_NEAR(fromRest.measured / fromRest.predicted, 1.0, 0.02) << fromRest.measured << " s from rest";
+  EXPECT_LT(fromStart.measured / fromStart.predicted, 0.975) << fromStart.measured << " s from the start";
+}
+
 }  // namespace
 }  // namespace springlab
