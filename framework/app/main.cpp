@@ -64,16 +64,18 @@ void printProfile(const Simulation& sim, long steps) {
 // end without it). The limit is the step's own (stepStableDt), computed once and given to the
 // check. Nothing is measured at or below the limit, for a method with no stable dt or an
 // unlimited one, or where the limit cannot be computed (a student's step still missing: the
-// run itself then says so).
+// run itself then says so). The limit is computed on a copy of the scene: the run itself is
+// then the same to the last bit with or without it (the browser's page is held to that).
 void watchPastTheLimit(const Registry& registry, const SceneDocument& document, Simulation& sim, double dt,
                        long steps) {
   double limit = NAN;
   try {
-    limit = stepStableDt(sim);
+    LoadedScene copy = registry.loadScene(document);
+    copy.sim->setIntegrator(registry.makeIntegrator(sim.integrator().name()));
+    limit = stepStableDt(*copy.sim);
   } catch (const std::exception&) {
     limit = NAN;
   }
-  sim.reset();
   if (!(limit > 0.0) || !std::isfinite(limit)) return;
   sim.setKnownStepLimit(limit);
   if (dt <= limit) return;

@@ -63,6 +63,7 @@ int chartWorkPrecision(const Registry& registry, const StudyCommandOptions& o) {
   facts["reference_dt_s"] = study.referenceDt;
   facts["w_max_rad_s"] = study.maxAngularFrequency;
   facts["skipped"] = study.skipped;
+  facts["from_rest_s"] = o.fromRest;
   writeFacts(folder + "/work_precision.json", facts);
   printSkipped(study.skipped);
   std::cout << "wrote " << folder << "/work_precision.csv (" << study.points.size() << " runs, reference rk4 at dt = "
@@ -76,6 +77,7 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
   so.integrators = o.integrators;
   so.duration = o.time;
   so.threads = o.threads;
+  so.fromRest = o.fromRest;
   const studies::Stability study = studies::stability(registry, doc, so);
   const std::string folder = outputFolder(o);
   studies::writeCsv(study, folder + "/stability.csv");
@@ -194,6 +196,10 @@ std::pair<CLI::App*, CLI::App*> addStudyCommands(CLI::App& app, StudyCommandOpti
   chart->add_option("--resolutions", o.resolutions, "resolution: values of the resolution key")->delimiter(',');
   chart->add_option("--map-integrator", o.mapIntegrator, "stability: integrator of the stiffness x dt map (default: the scene's)");
   chart->add_flag("--no-map", o.noMap, "stability: skip the stiffness x dt map");
+  chart->add_option("--from-rest", o.fromRest,
+                    "stability: trials first run each method at half its predicted limit for this many seconds "
+                    "(the scene at rest, past its landing), then at the trial's dt (default 0: from the start)")
+      ->check(CLI::NonNegativeNumber);
 
   auto* advise = app.add_subcommand("advise", "print the cheapest resolution, integrator and dt within a tolerance, as JSON to paste into the scene");
   common(advise);

@@ -27,6 +27,7 @@ struct StudyCommandOptions {
   std::vector<int> resolutions;
   std::string mapIntegrator;
   bool noMap = false;
+  double fromRest = 0.0;            // s, stability: trials start from the method's run at half its limit
 };
 
 // Add `chart` and `advise` to the app; returns the two subcommands.

@@ -93,7 +93,7 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   sim.setBlowUpExplanation(spec.explainBlowUp);
   std::shared_ptr<const StableSwing> swing = spec.swing;
   if (!swing && spec.swingDt > 0.0) {
-    const double duration = spec.dt * static_cast<double>(spec.stepsPerSample) * spec.samples;
+    const double duration = spec.restTime + spec.dt * static_cast<double>(spec.stepsPerSample) * spec.samples;
     swing = std::make_shared<const StableSwing>(
         measureStableSwing(registry, spec.scene, spec.integrator, spec.stiffnessScale, spec.swingDt, duration));
   }
@@ -112,6 +112,9 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   // Step, sampling every stepsPerSample steps; a blow-up ends the run and is recorded.
   const auto start = std::chrono::steady_clock::now();
   try {
+    if (spec.restTime > 0.0 && spec.restDt > 0.0) {
+      while (sim.state.time < spec.restTime - 0.5 * spec.restDt) sim.operate(spec.restDt);
+    }
     for (int k = 0; k < spec.samples; ++k) {
       for (long j = 0; j < spec.stepsPerSample; ++j) sim.operate(spec.dt);
       sample(sim, spec.keepPositions, out);

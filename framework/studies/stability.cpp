@@ -52,7 +52,8 @@ class SharedSwing {
 // Does the scene survive `duration` (and at least kFewestTrialSteps) at dt, and so does its
 // twin at a dt kTwinOffset smaller? (nullopt: too many steps to try)
 std::optional<bool> survives(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                             double dt, double duration, long maxSteps, double stiffnessScale, SharedSwing& swing) {
+                             double dt, double duration, long maxSteps, double stiffnessScale, SharedSwing& swing,
+                             double restTime, double restDt) {
   const long steps = std::max(kFewestTrialSteps, std::lround(std::ceil(duration / dt)));
   if (steps > maxSteps) return std::nullopt;
   RunSpec spec{scene, integrator, dt, steps, 1};
@@ -60,6 +61,8 @@ std::optional<bool> survives(const Registry& registry, const SceneDocument& scen
   spec.stiffnessScale = stiffnessScale;
   spec.swing = swing.get();
   spec.explainBlowUp = false;  // the bisection needs the verdict only
+  spec.restTime = restTime;
+  spec.restDt = restDt;
   if (!runScene(registry, spec).stable) return false;
   // A verdict must not hang on round-off: a scene with contacts is chaotic, and past the limit a
   // run may miss its instability by luck (the midpoint rule on the dropped cloth at 1.09 times
@@ -93,13 +96,15 @@ double stabilityTrialDuration(const Registry& registry, const SceneDocument& sce
 
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                       double duration, double firstGuess, double tolerance, long maxSteps, double stiffnessScale,
-                      double swingDt) {
+                      double swingDt, double restTime) {
   CriticalDt out;
   out.integrator = integrator;
-  SharedSwing swing(registry, scene, integrator, stiffnessScale, swingDt, duration);
+  // The rest is reached at swingDt: without a swing run there is none to start from.
+  if (!(swingDt > 0.0)) restTime = 0.0;
+  SharedSwing swing(registry, scene, integrator, stiffnessScale, swingDt, restTime + duration);
   auto stable = [&](double dt) {
     ++out.trials;
-    return survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale, swing);
+    return survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale, swing, restTime, swingDt);
   };
 
   // Bracket: double while stable, halve while unstable. Up to 2^20 (a million) times the first
@@ -175,7 +180,8 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
                                      : 0.01;
       const double duration = o.duration > 0.0 ? o.duration : stabilityTrialDuration(registry, scene, names[i], predicted, study.duration);
       const double swingDt = std::isfinite(predicted) && predicted > 0.0 ? 0.5 * predicted : 0.0;
-      results[i] = criticalDt(registry, scene, names[i], duration, guess, o.tolerance, o.maxSteps, 1.0, swingDt);
+      results[i] = criticalDt(registry, scene, names[i], duration, guess, o.tolerance, o.maxSteps, 1.0, swingDt,
+                              o.fromRest);
       results[i].predicted = predicted;
       results[i].duration = duration;
     } catch (const NotImplemented& e) {
@@ -232,7 +238,7 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
     StabilityMapCell& cell = map.cells[i];
     const std::optional<bool> ok =
         survives(registry, scene, map.integrator, cell.dt, map.duration, o.maxSteps, cell.stiffnessScale,
-                 *swings[static_cast<std::size_t>(i) / static_cast<std::size_t>(std::max(1, o.dtCount))]);
+                 *swings[static_cast<std::size_t>(i) / static_cast<std::size_t>(std::max(1, o.dtCount))], 0.0, 0.0);
     cell.run = ok.has_value();
     cell.stable = ok.value_or(true);
   }, o.progress ? "stability map cells" : "");

@@ -45,6 +45,11 @@ struct RunSpec {
   // That swing measured beforehand, for runs that share it (a bisection's trials); null: measured
   // here when swingDt > 0, over this run's time.
   std::shared_ptr<const StableSwing> swing = nullptr;
+  // s, > 0: the run first steps the scene at restDt until this time, its blow-up check on (a
+  // user who lets the scene settle, then raises dt), and only then at dt; its samples and
+  // steps count from the start. The swing run then covers the rest too.
+  double restTime = 0.0;
+  double restDt = 0.0;  // s, the step up to restTime (half the stability limit)
   // Watch for a capped instability (BlowUpCheck detectors 5 and 6, from the step reversal and
   // the kinetic energy the swing run held); false turns both off (a test of the other detectors).
   bool watchReversal = true;

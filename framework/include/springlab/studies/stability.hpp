@@ -22,6 +22,11 @@ struct StabilityOptions {
   long maxSteps = 4000000;   // a trial needing more steps is not run (the bracket stops there)
   int threads = 0;
   bool progress = true;
+  // s, > 0: each trial first runs the method at half its predicted limit until this time (the
+  // scene at rest, past its landing or its first gust), and only then at the trial's dt: the
+  // measured limit is then that of the rest the prediction linearises at, without the
+  // transients on the way there (a landing stiffer than the rest). 0: trials start at t = 0.
+  double fromRest = 0.0;
 };
 
 // One method's largest stable dt. `measured` is the lower end of the final bracket; it is
@@ -59,10 +64,12 @@ double stabilityTrialDuration(const Registry& registry, const SceneDocument& sce
 
 // Largest stable dt of one integrator, bisection from a first guess. With swingDt > 0 (half
 // the predicted limit) each trial's blow-up check allows what a stable run holds, measured once
-// at swingDt over `duration` and shared by the trials (StableSwing, RunSpec::swing).
+// at swingDt over `duration` and shared by the trials (StableSwing, RunSpec::swing). With
+// restTime > 0 as well, each trial runs at swingDt until restTime first (RunSpec::restTime) and
+// lasts `duration` from there.
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                       double duration, double firstGuess, double tolerance = 0.005, long maxSteps = 4000000,
-                      double stiffnessScale = 1.0, double swingDt = 0.0);
+                      double stiffnessScale = 1.0, double swingDt = 0.0, double restTime = 0.0);
 
 Stability stability(const Registry& registry, const SceneDocument& scene, const StabilityOptions& options);
 
