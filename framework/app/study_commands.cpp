@@ -63,7 +63,6 @@ int chartWorkPrecision(const Registry& registry, const StudyCommandOptions& o) {
   facts["reference_dt_s"] = study.referenceDt;
   facts["w_max_rad_s"] = study.maxAngularFrequency;
   facts["skipped"] = study.skipped;
-  facts["from_rest_s"] = o.fromRest;
   writeFacts(folder + "/work_precision.json", facts);
   printSkipped(study.skipped);
   std::cout << "wrote " << folder << "/work_precision.csv (" << study.points.size() << " runs, reference rk4 at dt = "
@@ -112,6 +111,7 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
   facts["w_max_rad_s"] = study.maxAngularFrequency;
   facts["gershgorin_rad_s"] = study.gershgorinBound;
   facts["skipped"] = study.skipped;
+  facts["from_rest_s"] = o.fromRest;  // s, 0: the trials start at t = 0
   if (!o.noMap) {
     studies::StabilityMapOptions mo;
     mo.integrator = o.mapIntegrator;
