@@ -85,11 +85,8 @@ void watchPastTheLimit(const Registry& registry, const SceneDocument& document, 
   sim.setKnownStepLimit(limit);
   std::cerr << "springlab sim: dt = " << dt << " s is " << dt / limit << " times the step's stability limit ("
             << limit << " s); the run is held to the same scene at half the limit, measured first\n";
-  const studies::StableSwing swing = studies::measureStableSwing(registry, document, sim.integrator().name(), 1.0,
-                                                                 0.5 * limit, dt * static_cast<double>(steps));
-  sim.setEnergySwing(swing.total, swing.own);
-  sim.setReversalSwing(swing.reversal);
-  sim.setReversalProfile(swing.profile);
+  studies::holdToSwing(sim, studies::measureStableSwing(registry, document, sim.integrator().name(), 1.0, 0.5 * limit,
+                                                       dt * static_cast<double>(steps)));
 }
 
 int runSim(const Registry& registry, const SimOptions& o) {

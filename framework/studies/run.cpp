@@ -84,6 +84,12 @@ StableSwing measureStableSwing(const Registry& registry, const SceneDocument& sc
   return swing;
 }
 
+void holdToSwing(Simulation& sim, const StableSwing& swing) {
+  sim.setEnergySwing(swing.total, swing.own);
+  sim.setReversalSwing(swing.reversal);
+  sim.setReversalProfile(swing.profile);
+}
+
 RunResult runScene(const Registry& registry, const RunSpec& spec) {
   LoadedScene loaded = registry.loadScene(spec.scene);
   Simulation& sim = *loaded.sim;
@@ -97,11 +103,7 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
     swing = std::make_shared<const StableSwing>(
         measureStableSwing(registry, spec.scene, spec.integrator, spec.stiffnessScale, spec.swingDt, duration));
   }
-  if (swing) {
-    sim.setEnergySwing(swing->total, swing->own);
-    sim.setReversalSwing(swing->reversal);
-    sim.setReversalProfile(swing->profile);
-  }
+  if (swing) holdToSwing(sim, *swing);
   if (!spec.watchReversal) sim.setReversalSwing(std::numeric_limits<double>::infinity());
 
   RunResult out;

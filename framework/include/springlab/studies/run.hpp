@@ -29,6 +29,9 @@ struct StableSwing {
 constexpr long kMaxSwingSteps = 4'000'000;
 StableSwing measureStableSwing(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                                double stiffnessScale, double dt, double duration);
+// Hold sim's blow-up check to that swing (BlowUpCheck::setEnergySwing, setReversalSwing,
+// setReversalProfile): the chart's trials and `sim` past the step's limit.
+void holdToSwing(Simulation& sim, const StableSwing& swing);
 
 struct RunSpec {
   SceneDocument scene;
