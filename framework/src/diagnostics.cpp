@@ -463,7 +463,7 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
       } else {
         os << "a thousandth of the speed its energy scale stands for; no swing was measured";
       }
-      os << "; dt is past the step's limit); a contact or the stretch limit keeps it from growing, so the energy does not show it";
+      os << "; dt is past the step's limit); something in the scene that is not linear (a contact, the stretch limit, the wind's drag) keeps it from growing, so the energy does not show it";
       why = os.str();
     }
   }

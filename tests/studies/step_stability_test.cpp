@@ -705,3 +705,40 @@ TEST(LandingCloth, TheChartFromRestMeasuresThePredictionAndFromTheStartTheLandin
 
 }  // namespace
 }  // namespace springlab
+
+namespace springlab {
+namespace {
+// ---- one radius instead of the limit: what `sim` asks before it runs ---------------------------
+// `sim` takes dt as within the limit when the step's spectral radius at dt is at most 1 + the
+// slack, and computes the limit (a bisection, ten radii) only when it is not. That shortcut is
+// exact where the radius crosses 1 once, at the limit: just below it the radius is within the
+// slack, just past it above. Held on the rope (the dense Jacobian), the inflated ball (the modal
+// runs, pressure and floor) and the flag (wind, never at rest), each under a method whose limit a
+// different mechanism sets.
+struct RadiusCase {
+  const char* scene;
+  const char* method;
+};
+void PrintTo(const RadiusCase& c, std::ostream* os) { *os << c.scene << " " << c.method; }
+class RadiusAtDt : public ::testing::TestWithParam<RadiusCase> {};
+TEST_P(RadiusAtDt, IsWithinOneJustBelowTheLimitAndAboveItJustPast) {
+  const RadiusCase c = GetParam();
+  LoadedScene loaded = allLabs().loadScene(shippedScene(c.scene));
+  Simulation& sim = *loaded.sim;
+  sim.setIntegrator(allLabs().makeIntegrator(c.method));
+  const double limit = stepStableDt(sim);
+  ASSERT_TRUE(limit > 0.0 && std::isfinite(limit)) << limit;
+  const double slack = StepStabilityOptions{}.radiusSlack;
+  EXPECT_LE(stepSpectralRadius(sim, 0.97 * limit).radius, 1.0 + slack) << "limit " << limit << " s";
+  EXPECT_GT(stepSpectralRadius(sim, 1.03 * limit).radius, 1.0 + slack) << "limit " << limit << " s";
+}
+INSTANTIATE_TEST_SUITE_P(ShippedScenes, RadiusAtDt,
+                         ::testing::Values(RadiusCase{"rope.json", "symplectic_euler"},
+                                           RadiusCase{"softbody_ball.json", "midpoint"},
+                                           RadiusCase{"net_flag.json", "explicit_euler"}),
+                         [](const auto& p) {
+                           const std::string scene = p.param.scene;
+                           return scene.substr(0, scene.find('.')) + "_" + p.param.method;
+                         });
+}  // namespace
+}  // namespace springlab
