@@ -160,10 +160,32 @@ std::vector<ChainCase> chainCases() {
   return cases;
 }
 
+std::string chainCaseName(const ::testing::TestParamInfo<ChainCase>& p) {
+  return p.param.integrator + "_kd" + std::to_string(static_cast<int>(p.param.kd * 10));
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, DampedChainLimit, ::testing::ValuesIn(chainCases()),
-                         [](const auto& p) {
-                           return p.param.integrator + "_kd" + std::to_string(static_cast<int>(p.param.kd * 10));
-                         });
+                         chainCaseName);
+
+// ---- the radius at dt, which `sim` asks instead of the limit, against the closed form -----------
+// `sim` takes dt as within the limit when the step's spectral radius at dt is within the slack.
+// On the chain, damped from none to overdamped (stiffest mode's damping ratio up to 1.5), that
+// verdict must agree with the closed-form limit: within at 0.97 times it, past it at 1.03 times.
+class DampedChainRadius : public ::testing::TestWithParam<ChainCase> {};
+
+TEST_P(DampedChainRadius, IsWithinOneBelowTheClosedFormLimitAndAboveItPast) {
+  const auto [kd, integrator] = GetParam();
+  const double wMax = 2.0 * std::sqrt(kStiffness / kMass);
+  const double exact = closedFormLimit(integrator, chainModes(kd), 1e-9, 10.0 / wMax);
+  LoadedScene loaded = allLabs().loadScene(dampedChain(kd));
+  loaded.sim->setIntegrator(allLabs().makeIntegrator(integrator));
+  const double slack = StepStabilityOptions{}.radiusSlack;
+  EXPECT_LE(stepSpectralRadius(*loaded.sim, 0.97 * exact).radius, 1.0 + slack) << "closed form " << exact << " s";
+  EXPECT_GT(stepSpectralRadius(*loaded.sim, 1.03 * exact).radius, 1.0 + slack) << "closed form " << exact << " s";
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, DampedChainRadius, ::testing::ValuesIn(chainCases()),
+                         chainCaseName);
 
 // ---- runs at 0.97 and 1.03 times the prediction -----------------------------------------------
 // The chart's trial: at least 300 periods of the stiffest mode, longer when the instability
