@@ -59,8 +59,15 @@ class SharedRestBaseline {
                      double stiffnessScale, double swingDt, double duration)
       : registry_(registry), scene_(scene), integrator_(integrator), stiffnessScale_(stiffnessScale),
         swingDt_(swingDt), duration_(duration) {}
-  // Whether trials are held to the rest check (the scene rests at half the limit).
-  bool applies() {
+  // Whether a trial at dt is held to the rest check: only past the step's limit (twice the
+  // swing's dt), as detectors 5 and 6, and where the scene rests at half the limit. Below the
+  // limit the runs from where the settling stopped go where the limit was not computed: the
+  // ball dropped on its floor (the settling stops in the air, 1.78 ms under symplectic Euler)
+  // lands and rests on the floor, whose limit is 1.57 ms, and held to its rest below the limit
+  // the chart measured 0.84 times the prediction (1.50 ms, below the floor's limit too: the
+  // landing's contacts part the two runs, not one state's step).
+  bool applies(double dt) {
+    if (!(swingDt_ > 0.0) || dt <= 2.0 * swingDt_) return false;
     std::call_once(once_, [&] {
       if (swingDt_ > 0.0) {
         applies_ = restCheckApplies(
@@ -103,7 +110,7 @@ std::optional<bool> survives(const Registry& registry, const SceneDocument& scen
   // A mode past its limit that something nonlinear caps (a contact, the wind's drag) leaves
   // the run bounded and within the check's allowances (the wind ball under velocity Verlet
   // survived 1.2 times its limit); where the scene rests, its rest must hold at dt too.
-  if (rest.applies() &&
+  if (rest.applies(dt) &&
       restBroken(measureRestGrowth(registry, scene, integrator, stiffnessScale, dt, duration))) {
     return false;
   }
