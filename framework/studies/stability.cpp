@@ -69,10 +69,8 @@ class SharedRestBaseline {
   bool applies(double dt) {
     if (!(swingDt_ > 0.0) || dt <= 2.0 * swingDt_) return false;
     std::call_once(once_, [&] {
-      if (swingDt_ > 0.0) {
-        applies_ = restCheckApplies(
-            measureRestGrowth(registry_, scene_, integrator_, stiffnessScale_, swingDt_, duration_));
-      }
+      applies_ = restCheckApplies(
+          measureRestGrowth(registry_, scene_, integrator_, stiffnessScale_, swingDt_, duration_));
     });
     return applies_;
   }
