@@ -14,15 +14,14 @@
 
 namespace springlab::studies {
 
-namespace {
-
-// Every spring's k times factor: a model edit, before the run starts.
 void scaleSprings(Simulation& sim, double factor) {
   if (factor == 1.0) return;
   sim.editModel([factor](Simulation& model) {
     for (Spring& s : model.editSprings()) s.springConstant *= factor;
   });
 }
+
+namespace {
 
 void sample(const Simulation& sim, bool keepPositions, RunResult& out) {
   out.times.push_back(sim.state.time);

@@ -9,11 +9,14 @@ moving where a stable step comes to rest (detector 6). Telling that from the sce
 takes the same scene at half the limit, which the stability chart's trials are held to; before
 `sim` measured it too, every row here ran to the end at 1.03 times its limit (exit 0).
 
+The wind ball under velocity Verlet, the trampoline under position Verlet and the pillow under
+velocity Verlet hold a mode that the floor, the stretch limit or the pillow's own wobble caps
+within every allowance of the check (all three ran to the end at 1.03 times before): what reports it is the rest check after the run (the scene's rest, disturbed, does not hold
+at that dt), which `sim` runs past the limit where the scene rests at half the limit.
+
 The limit is sim's own: a one-step run far past it prints it ("... times the step's stability
 limit (L s)"). Each run lasts the stability chart's trial time for that scene and method
-(stability.csv, duration_s), rounded up. Rows whose runs outlive 1.03 times the prediction in the
-chart too (the pillow under velocity Verlet measures 1.036 times it) are not here: there the
-prediction, not sim's check, is what misses.
+(stability.csv, duration_s), rounded up.
 """
 import math
 import re
@@ -28,6 +31,11 @@ ROWS = [
     ("net_sphere_slope_weak_wind", "velocity_verlet", 4.5),
     ("net_sphere_slope_strong_wind", "velocity_verlet", 4.5),
     ("softbody_ring_2d", "midpoint", 9628.0),
+    # The floor caps the mode within the check's allowances; the rest check sees it.
+    ("softbody_wind", "velocity_verlet", 3.04),
+    # The stretch limit's projection slows the growth below what the run's check sees in 2 s.
+    ("net_trampoline", "position_verlet", 2.06),
+    ("softbody_pillow_obj", "velocity_verlet", 4.35),
 ]
 
 LIMIT = re.compile(r"times the step's stability limit \(([0-9.eE+-]+) s\)")

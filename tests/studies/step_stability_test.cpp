@@ -14,6 +14,7 @@
 #include <springlab/diagnostics.hpp>
 #include <springlab/frequency_estimate.hpp>
 #include <springlab/step_stability.hpp>
+#include <springlab/studies/rest_check.hpp>
 #include <springlab/studies/run.hpp>
 #include <springlab/studies/stability.hpp>
 
@@ -186,6 +187,31 @@ TEST_P(DampedChainRadius, IsWithinOneBelowTheClosedFormLimitAndAboveItPast) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, DampedChainRadius, ::testing::ValuesIn(chainCases()),
                          chainCaseName);
+
+// ---- the rest check, the real step's runs, against the closed form ------------------------------
+// The rest check (rest_check.hpp) runs the real step twice from the rest, one run disturbed by
+// 1e-8 of the scene's size, and says the rest does not hold where the difference grows past
+// kRestGrowthLimit. No eigenvalue in it: on the chain at rest, undamped to overdamped, it must
+// agree with the closed-form limit by itself, for a trial as long as the chart's.
+class DampedChainRest : public ::testing::TestWithParam<ChainCase> {};
+
+TEST_P(DampedChainRest, HoldsBelowTheClosedFormLimitAndBreaksPastIt) {
+  const auto [kd, integrator] = GetParam();
+  const double wMax = 2.0 * std::sqrt(kStiffness / kMass);
+  const double exact = closedFormLimit(integrator, chainModes(kd), 1e-9, 10.0 / wMax);
+  const SceneDocument chain = dampedChain(kd);
+  const double duration = studies::stabilityTrialDuration(allLabs(), chain, integrator, exact,
+                                                          studies::defaultStabilityDuration(wMax));
+  auto growth = [&](double factor) {
+    return studies::measureRestGrowth(allLabs(), chain, integrator, 1.0, factor * exact, duration);
+  };
+  const studies::RestGrowth half = growth(0.5), below = growth(0.97), past = growth(1.03);
+  EXPECT_TRUE(studies::restCheckApplies(half)) << "half the limit: " << half.growth;
+  EXPECT_FALSE(studies::restBroken(below)) << "0.97 times " << exact << " s: " << below.growth;
+  EXPECT_TRUE(studies::restBroken(past)) << "1.03 times " << exact << " s: " << past.growth;
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, DampedChainRest, ::testing::ValuesIn(chainCases()), chainCaseName);
 
 // ---- runs at 0.97 and 1.03 times the prediction -----------------------------------------------
 // The chart's trial: at least 300 periods of the stiffest mode, longer when the instability
@@ -723,6 +749,56 @@ TEST(LandingCloth, TheChartFromRestMeasuresThePredictionAndFromTheStartTheLandin
   ASSERT_TRUE(std::isfinite(fromRest.predicted) && fromRest.predicted > 0.0) << fromRest.predicted;
   EXPECT_NEAR(fromRest.measured / fromRest.predicted, 1.0, 0.02) << fromRest.measured << " s from rest";
   EXPECT_LT(fromStart.measured / fromStart.predicted, 0.975) << fromStart.measured << " s from the start";
+}
+
+// ---- a mode that the floor caps: the rest check sees what the run's check allows ---------------
+// The ball in the wind under velocity Verlet, past its limit: a step-alternating wobble of the
+// masses on the floor sets in at the limit and the floor caps it (1.2e-3 m/s at 1.04 times the
+// limit), within the 64 times the swing run's that the check allows, so the run from the start
+// survives 1.03 times its limit (the chart measured 1.215 times before the rest check). The
+// rest does not hold there: the disturbance grows past the rest check's limit, for every
+// direction of it (seeds 1 to 4), and holds at 0.97 times the limit.
+TEST(WindBall, VelocityVerletRestBreaksJustPastTheLimitWhereTheRunFromTheStartSurvives) {
+  const SceneDocument ball = shippedScene("softbody_wind.json");
+  const std::string method = "velocity_verlet";
+  const double predicted = studies::sceneStepStableDt(allLabs(), ball, method);
+  ASSERT_TRUE(predicted > 0.0 && std::isfinite(predicted)) << predicted;
+  const double duration = 3.0;
+  EXPECT_TRUE(trialAt(ball, method, predicted, 1.03).stable) << "the run's own check now sees it: the rest check "
+                                                                  "is no longer what catches this row";
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    auto growth = [&](double factor) {
+      return studies::measureRestGrowth(allLabs(), ball, method, 1.0, factor * predicted, duration, seed);
+    };
+    const studies::RestGrowth half = growth(0.5), below = growth(0.97), past = growth(1.03);
+    EXPECT_TRUE(studies::restCheckApplies(half)) << "seed " << seed << ": " << half.growth;
+    EXPECT_FALSE(studies::restBroken(below)) << "seed " << seed << ": " << below.growth;
+    EXPECT_TRUE(studies::restBroken(past)) << "seed " << seed << ": " << past.growth;
+  }
+}
+
+// The chart's bisection, its trials past the limit held to the rest check, measures the wind
+// ball's velocity Verlet within 3 % of the prediction (1.215 times without it).
+TEST(WindBall, ChartMeasuresVelocityVerletAtItsPredictedLimit) {
+  studies::StabilityOptions o;
+  o.integrators = {"velocity_verlet"};
+  o.threads = 1;
+  o.progress = false;
+  const studies::CriticalDt m = studies::stability(allLabs(), shippedScene("softbody_wind.json"), o).methods.at(0);
+  ASSERT_TRUE(std::isfinite(m.predicted) && m.predicted > 0.0) << m.predicted;
+  EXPECT_NEAR(m.measured / m.predicted, 1.0, 0.03) << m.measured << " s measured, " << m.predicted << " s predicted";
+}
+
+// A flag in the wind never rests: at half its limit its own motion separates two runs a
+// millimetre apart by far more than the rest check allows, so the check does not apply there
+// (and cannot call the flag's flutter an instability).
+TEST(WindFlag, IsNotHeldToTheRestCheck) {
+  const SceneDocument flag = shippedScene("net_flag.json");
+  const double predicted = studies::sceneStepStableDt(allLabs(), flag, "symplectic_euler");
+  ASSERT_TRUE(predicted > 0.0 && std::isfinite(predicted)) << predicted;
+  const studies::RestGrowth half =
+      studies::measureRestGrowth(allLabs(), flag, "symplectic_euler", 1.0, 0.5 * predicted, 0.6);
+  EXPECT_FALSE(studies::restCheckApplies(half)) << half.growth;
 }
 
 }  // namespace

@@ -86,6 +86,10 @@ std::vector<double> positionErrors(const RunResult& run, const RunResult& refere
 // The values of one observable over a run; std::invalid_argument naming the known ones.
 std::vector<double> observableSeries(const RunResult& run, const std::string& name);
 
+// Every spring's k times factor (the stability map's stiffness scale): a model edit, before
+// the run starts.
+void scaleSprings(Simulation& sim, double factor);
+
 // The largest angular frequency of the scene at its initial state (Lanczos estimate),
 // with every spring's k multiplied by stiffnessScale.
 double sceneLanczosEstimate(const Registry& registry, const SceneDocument& scene, double stiffnessScale = 1.0);
