@@ -368,7 +368,7 @@ def stability(folder):
                     ha="center", va=va, fontsize=7.5, color="0.15" if 0 < p < inf else "0.35")
     # Legend proxies: the marker of each method is its measured dt, the bar the prediction.
     # Above the axes, so it covers no column.
-    ax.scatter([], [], marker="o", color="0.4", s=60, label="measured (bisection on the blow-up check)")
+    ax.scatter([], [], marker="o", color="0.4", s=60, label="measured (bisection on the blow-up check and, past the limit, the rest check)")
     ax.plot([], [], color="black", lw=2, label="predicted: limit of the linearised step")
     ax.plot([], [], color="0.45", lw=1.2, ls="dashed", label="undamped rule c / w_max")
     ax.set_ylim(bottom, top * 4)  # room above the highest marker for its note

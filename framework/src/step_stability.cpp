@@ -232,16 +232,20 @@ class LinearisedRuns {
   // run() into `out`, whose storage is kept from one run to the next (the 64 x 64 cloth's
   // snapshots are 0.4 MB: a fresh allocation per run cost page faults, a tenth of its time).
   void runInto(double dt, int count, const Eigen::VectorXd& direction, Eigen::MatrixXd& out) {
+    restoreMoved(direction);
+    runFromCurrentInto(dt, count, out);
+  }
+
+  // restore(), then the state moved by epsilon times `direction` (empty: not moved).
+  void restoreMoved(const Eigen::VectorXd& direction) {
     restore();
+    if (direction.size() != size()) return;
     State& s = sim_.state;
     const int n = static_cast<int>(dofs_.size());
-    if (direction.size() == size()) {
-      for (int j = 0; j < n; ++j) {
-        s.pos[dofs_[j].mass][dofs_[j].axis] += positionStep_ * direction[j];
-        s.vel[dofs_[j].mass][dofs_[j].axis] += velocityStep_ * direction[n + j];
-      }
+    for (int j = 0; j < n; ++j) {
+      s.pos[dofs_[j].mass][dofs_[j].axis] += positionStep_ * direction[j];
+      s.vel[dofs_[j].mass][dofs_[j].axis] += velocityStep_ * direction[n + j];
     }
-    runFromCurrentInto(dt, count, out);
   }
 
   // Steps from the current state (the integrator's history forgotten), as run() records them.
@@ -288,15 +292,9 @@ class LinearisedRuns {
   // every `stride` steps: column c is the state after (c + 1) stride steps. Stops early
   // (fewer columns) when the state turns non-finite or the step throws.
   Eigen::MatrixXd sampledRun(double dt, long steps, long stride, const Eigen::VectorXd& direction) {
-    restore();
+    restoreMoved(direction);
     State& s = sim_.state;
     const int n = static_cast<int>(dofs_.size());
-    if (direction.size() == size()) {
-      for (int j = 0; j < n; ++j) {
-        s.pos[dofs_[j].mass][dofs_[j].axis] += positionStep_ * direction[j];
-        s.vel[dofs_[j].mass][dofs_[j].axis] += velocityStep_ * direction[n + j];
-      }
-    }
     sim_.integrator().reset();
     const bool checked = sim_.blowUpCheckEnabled();
     sim_.setBlowUpCheck(false);

@@ -23,42 +23,27 @@ namespace {
 constexpr long kFewestTrialSteps = 200;
 constexpr double kTwinOffset = 1e-6;  // the relative dt of a stable trial's twin
 
-// The stable run's swing that a series of trials shares (one bisection, one row of the map),
-// measured at swingDt (0: none) over the trials' duration when the first trial runs.
-class SharedSwing {
+// What a series of trials (one bisection, one row of the map) holds its runs to, measured at
+// swingDt (half the stability limit; 0: none) when a trial first needs it: the stable run's
+// swing over the trials' duration (and the rest before it), and whether the scene rests there,
+// which holds a trial past the limit to the rest check.
+class HalfLimitRuns {
  public:
-  SharedSwing(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-              double stiffnessScale, double swingDt, double duration)
+  HalfLimitRuns(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
+                double stiffnessScale, double swingDt, double duration, double restTime = 0.0)
       : registry_(registry), scene_(scene), integrator_(integrator), stiffnessScale_(stiffnessScale),
-        swingDt_(swingDt), duration_(duration) {}
-  std::shared_ptr<const StableSwing> get() {
-    std::call_once(once_, [&] {
+        swingDt_(swingDt), duration_(duration), restTime_(restTime) {}
+
+  std::shared_ptr<const StableSwing> swing() {
+    std::call_once(swingOnce_, [&] {
       if (swingDt_ > 0.0) {
         swing_ = std::make_shared<const StableSwing>(
-            measureStableSwing(registry_, scene_, integrator_, stiffnessScale_, swingDt_, duration_));
+            measureStableSwing(registry_, scene_, integrator_, stiffnessScale_, swingDt_, restTime_ + duration_));
       }
     });
     return swing_;
   }
 
- private:
-  const Registry& registry_;
-  const SceneDocument& scene_;
-  std::string integrator_;
-  double stiffnessScale_, swingDt_, duration_;
-  std::once_flag once_;
-  std::shared_ptr<const StableSwing> swing_;
-};
-
-// The rest check's baseline that a series of trials shares: the rest growth at swingDt (half
-// the limit; 0: none, the check is off) over the trials' duration, measured when a trial first
-// needs it.
-class SharedRestBaseline {
- public:
-  SharedRestBaseline(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                     double stiffnessScale, double swingDt, double duration)
-      : registry_(registry), scene_(scene), integrator_(integrator), stiffnessScale_(stiffnessScale),
-        swingDt_(swingDt), duration_(duration) {}
   // Whether a trial at dt is held to the rest check: only past the step's limit (twice the
   // swing's dt), as detectors 5 and 6, and where the scene rests at half the limit. Below the
   // limit the runs from where the settling stopped go where the limit was not computed: the
@@ -66,35 +51,36 @@ class SharedRestBaseline {
   // lands and rests on the floor, whose limit is 1.57 ms, and held to its rest below the limit
   // the chart measured 0.84 times the prediction (1.50 ms, below the floor's limit too: the
   // landing's contacts part the two runs, not one state's step).
-  bool applies(double dt) {
+  bool restCheckApplies(double dt) {
     if (!(swingDt_ > 0.0) || dt <= 2.0 * swingDt_) return false;
-    std::call_once(once_, [&] {
-      applies_ = restCheckApplies(
+    std::call_once(restOnce_, [&] {
+      rests_ = studies::restCheckApplies(
           measureRestGrowth(registry_, scene_, integrator_, stiffnessScale_, swingDt_, duration_));
     });
-    return applies_;
+    return rests_;
   }
 
  private:
   const Registry& registry_;
   const SceneDocument& scene_;
   std::string integrator_;
-  double stiffnessScale_, swingDt_, duration_;
-  std::once_flag once_;
-  bool applies_ = false;
+  double stiffnessScale_, swingDt_, duration_, restTime_;
+  std::once_flag swingOnce_, restOnce_;
+  std::shared_ptr<const StableSwing> swing_;
+  bool rests_ = false;
 };
 
 // Does the scene survive `duration` (and at least kFewestTrialSteps) at dt, and so does its
 // twin at a dt kTwinOffset smaller? (nullopt: too many steps to try)
 std::optional<bool> survives(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                             double dt, double duration, long maxSteps, double stiffnessScale, SharedSwing& swing,
-                             double restTime, double restDt, SharedRestBaseline& rest) {
+                             double dt, double duration, long maxSteps, double stiffnessScale,
+                             HalfLimitRuns& reference, double restTime, double restDt) {
   const long steps = std::max(kFewestTrialSteps, std::lround(std::ceil(duration / dt)));
   if (steps > maxSteps) return std::nullopt;
   RunSpec spec{scene, integrator, dt, steps, 1};
   spec.keepPositions = false;
   spec.stiffnessScale = stiffnessScale;
-  spec.swing = swing.get();
+  spec.swing = reference.swing();
   spec.explainBlowUp = false;  // the bisection needs the verdict only
   spec.restTime = restTime;
   spec.restDt = restDt;
@@ -108,7 +94,7 @@ std::optional<bool> survives(const Registry& registry, const SceneDocument& scen
   // A mode past its limit that something nonlinear caps (a contact, the wind's drag) leaves
   // the run bounded and within the check's allowances (the wind ball under velocity Verlet
   // survived 1.2 times its limit); where the scene rests, its rest must hold at dt too.
-  if (rest.applies(dt) &&
+  if (reference.restCheckApplies(dt) &&
       restBroken(measureRestGrowth(registry, scene, integrator, stiffnessScale, dt, duration))) {
     return false;
   }
@@ -144,12 +130,10 @@ CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, cons
   out.integrator = integrator;
   // The rest is reached at swingDt: without a swing run there is none to start from.
   if (!(swingDt > 0.0)) restTime = 0.0;
-  SharedSwing swing(registry, scene, integrator, stiffnessScale, swingDt, restTime + duration);
-  SharedRestBaseline rest(registry, scene, integrator, stiffnessScale, swingDt, duration);
+  HalfLimitRuns reference(registry, scene, integrator, stiffnessScale, swingDt, duration, restTime);
   auto stable = [&](double dt) {
     ++out.trials;
-    return survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale, swing, restTime, swingDt,
-                    rest);
+    return survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale, reference, restTime, swingDt);
   };
 
   // Bracket: double while stable, halve while unstable. Up to 2^20 (a million) times the first
@@ -267,14 +251,12 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
 
   // Every cell is one run over the same simulated time, its passivity detector allowing the
   // swing measured at half the limit of its stiffness.
-  std::vector<std::unique_ptr<SharedSwing>> swings;
-  std::vector<std::unique_ptr<SharedRestBaseline>> rests;
+  std::vector<std::unique_ptr<HalfLimitRuns>> references;
   for (std::size_t r = 0; r < map.scales.size(); ++r) {
     const double limit = map.predicted[r];
     const double swingDt = std::isfinite(limit) && limit > 0.0 ? 0.5 * limit : 0.0;
-    swings.push_back(std::make_unique<SharedSwing>(registry, scene, map.integrator, map.scales[r], swingDt, map.duration));
-    rests.push_back(
-        std::make_unique<SharedRestBaseline>(registry, scene, map.integrator, map.scales[r], swingDt, map.duration));
+    references.push_back(
+        std::make_unique<HalfLimitRuns>(registry, scene, map.integrator, map.scales[r], swingDt, map.duration));
   }
   for (double s : map.scales) {
     for (int j = 0; j < o.dtCount; ++j) {
@@ -286,7 +268,7 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
     StabilityMapCell& cell = map.cells[i];
     const std::size_t row = static_cast<std::size_t>(i) / static_cast<std::size_t>(std::max(1, o.dtCount));
     const std::optional<bool> ok = survives(registry, scene, map.integrator, cell.dt, map.duration, o.maxSteps,
-                                            cell.stiffnessScale, *swings[row], 0.0, 0.0, *rests[row]);
+                                            cell.stiffnessScale, *references[row], 0.0, 0.0);
     cell.run = ok.has_value();
     cell.stable = ok.value_or(true);
   }, o.progress ? "stability map cells" : "");
