@@ -19,7 +19,7 @@
 //
 // It applies only where the scene rests: at half the limit the two runs must stay within
 // kRestBaselineLimit of each other (26 or less on the resting scenes, the trampoline's the
-// largest). Where they do not (a swinging rope, a flag in the wind: 1e5 and more) the scene's
+// largest). Where they do not (a swinging rope, a flag in the wind: 2.5e3 to 3e4) the scene's
 // own motion separates nearby runs at every dt, and the rest check has nothing to say. The
 // chart and `sim` ask it only past the step's limit (stability.cpp says why).
 #include <string>
