@@ -256,8 +256,6 @@ class LinearisedRuns {
   }
   void runFromCurrentInto(double dt, int count, Eigen::MatrixXd& out) {
     if (isCancelled()) throw StepStabilityCancelled();
-    State& s = sim_.state;
-    const int n = static_cast<int>(dofs_.size());
     sim_.integrator().reset();
     const bool checked = sim_.blowUpCheckEnabled();
     sim_.setBlowUpCheck(false);
@@ -267,13 +265,7 @@ class LinearisedRuns {
       for (int k = 0; k <= count; ++k) {
         sim_.operate(dt);
         ++steps_;
-        bool finite = true;
-        for (int j = 0; j < n; ++j) {
-          out(j, k) = s.pos[dofs_[j].mass][dofs_[j].axis] / length_;
-          out(n + j, k) = s.vel[dofs_[j].mass][dofs_[j].axis] / (length_ * frequency_);
-          finite = finite && std::isfinite(out(j, k)) && std::isfinite(out(n + j, k));
-        }
-        if (!finite) break;
+        if (!recordState(out, k)) break;
         columns = k + 1;
       }
     } catch (...) {
@@ -288,13 +280,26 @@ class LinearisedRuns {
     if (columns < count + 1) out.conservativeResize(Eigen::NoChange, columns);
   }
 
+  // The current state into column c of `out`, in the recorded (dimensionless) coordinates:
+  // positions over the typical length, velocities over that length times w_max. False when a
+  // coordinate is not finite.
+  bool recordState(Eigen::MatrixXd& out, Eigen::Index c) const {
+    const State& s = sim_.state;
+    const int n = static_cast<int>(dofs_.size());
+    bool finite = true;
+    for (int j = 0; j < n; ++j) {
+      out(j, c) = s.pos[dofs_[j].mass][dofs_[j].axis] / length_;
+      out(n + j, c) = s.vel[dofs_[j].mass][dofs_[j].axis] / (length_ * frequency_);
+      finite = finite && std::isfinite(out(j, c)) && std::isfinite(out(n + j, c));
+    }
+    return finite;
+  }
+
   // A long run from the start state (plus epsilon times `direction`, as run()), recorded
   // every `stride` steps: column c is the state after (c + 1) stride steps. Stops early
   // (fewer columns) when the state turns non-finite or the step throws.
   Eigen::MatrixXd sampledRun(double dt, long steps, long stride, const Eigen::VectorXd& direction) {
     restoreMoved(direction);
-    State& s = sim_.state;
-    const int n = static_cast<int>(dofs_.size());
     sim_.integrator().reset();
     const bool checked = sim_.blowUpCheckEnabled();
     sim_.setBlowUpCheck(false);
@@ -306,13 +311,7 @@ class LinearisedRuns {
         sim_.operate(dt);
         ++steps_;
         if (k % stride != 0) continue;
-        bool finite = true;
-        for (int j = 0; j < n; ++j) {
-          out(j, columns) = s.pos[dofs_[j].mass][dofs_[j].axis] / length_;
-          out(n + j, columns) = s.vel[dofs_[j].mass][dofs_[j].axis] / (length_ * frequency_);
-          finite = finite && std::isfinite(out(j, columns)) && std::isfinite(out(n + j, columns));
-        }
-        if (!finite) break;
+        if (!recordState(out, columns)) break;
         ++columns;
       }
     } catch (const StepStabilityCancelled&) {

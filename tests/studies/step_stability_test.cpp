@@ -135,12 +135,17 @@ struct ChainCase {
 
 void PrintTo(const ChainCase& c, std::ostream* os) { *os << c.integrator << " kd " << c.kd; }
 
+// The chain's stiffest angular frequency and the case's closed-form limit (chainModes).
+double chainMaxFrequency() { return 2.0 * std::sqrt(kStiffness / kMass); }
+double chainExactLimit(const ChainCase& c) {
+  return closedFormLimit(c.integrator, chainModes(c.kd), 1e-9, 10.0 / chainMaxFrequency());
+}
+
 class DampedChainLimit : public ::testing::TestWithParam<ChainCase> {};
 
 TEST_P(DampedChainLimit, IsTheClosedFormOfTheStiffestModeWithin2Percent) {
   const auto [kd, integrator] = GetParam();
-  const double wMax = 2.0 * std::sqrt(kStiffness / kMass);
-  const double exact = closedFormLimit(integrator, chainModes(kd), 1e-9, 10.0 / wMax);
+  const double exact = chainExactLimit(GetParam());
   // The whole Jacobian (the chain is small) and the modal runs the large scenes use.
   StepStabilityOptions modal;
   modal.denseBelow = 0;
@@ -176,8 +181,7 @@ class DampedChainRadius : public ::testing::TestWithParam<ChainCase> {};
 
 TEST_P(DampedChainRadius, IsWithinOneBelowTheClosedFormLimitAndAboveItPast) {
   const auto [kd, integrator] = GetParam();
-  const double wMax = 2.0 * std::sqrt(kStiffness / kMass);
-  const double exact = closedFormLimit(integrator, chainModes(kd), 1e-9, 10.0 / wMax);
+  const double exact = chainExactLimit(GetParam());
   LoadedScene loaded = allLabs().loadScene(dampedChain(kd));
   loaded.sim->setIntegrator(allLabs().makeIntegrator(integrator));
   const double slack = StepStabilityOptions{}.radiusSlack;
@@ -197,11 +201,10 @@ class DampedChainRest : public ::testing::TestWithParam<ChainCase> {};
 
 TEST_P(DampedChainRest, HoldsBelowTheClosedFormLimitAndBreaksPastIt) {
   const auto [kd, integrator] = GetParam();
-  const double wMax = 2.0 * std::sqrt(kStiffness / kMass);
-  const double exact = closedFormLimit(integrator, chainModes(kd), 1e-9, 10.0 / wMax);
+  const double exact = chainExactLimit(GetParam());
   const SceneDocument chain = dampedChain(kd);
   const double duration = studies::stabilityTrialDuration(allLabs(), chain, integrator, exact,
-                                                          studies::defaultStabilityDuration(wMax));
+                                                          studies::defaultStabilityDuration(chainMaxFrequency()));
   auto growth = [&](double factor) {
     return studies::measureRestGrowth(allLabs(), chain, integrator, 1.0, factor * exact, duration);
   };
