@@ -11,9 +11,14 @@
 // difference within the step's transient amplification: at 0.97 times the limit at most 54
 // times the disturbance (the ball under the user's sphere, midpoint rule; most stay below 3) on
 // the shipped scenes whose runs stay where the limit is computed (not the ball dropped from the
-// air, which rests on the floor, nor the wind ball pushed along it: stability.cpp). Past the limit it grows until the nonlinearity caps it: the wind ball
-// under velocity Verlet 4e3 times at 1.03 times its limit, every other resting scene 8e4 or more,
-// or non-finite. The closed form holds it too: on a chain at rest, undamped to overdamped, the
+// air, which rests on the floor, nor the wind ball pushed along it: stability.cpp). Past the
+// limit it grows until the nonlinearity caps it: the wind ball under velocity Verlet 4e3 times
+// at 1.03 times its limit, every other resting scene 8e4 or more, or non-finite. Those figures
+// are for the direction the chart and `sim` use (seed 1). The verdict depends on the direction:
+// over seeds 1-100 the wind ball at 1.03 times grows 2.2e3-4.1e3 times but for seed 74, 449
+// times, which this check would call a rest that holds; over seeds 1-30 the ball under the
+// user's sphere (midpoint rule, 107 s) at 0.97 times grows 54-1079 times, a slow growth below
+// the limit that the check, asked only past the limit, does not judge. The closed form holds it too: on a chain at rest, undamped to overdamped, the
 // rest holds at 0.97 times the closed-form limit and breaks at 1.03 times
 // (studies.DampedChainRest).
 //
