@@ -15,7 +15,8 @@ constexpr long kFewestRestSteps = 200;  // as a chart's trial: a few steps canno
 }  // namespace
 
 RestGrowth measureRestGrowth(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                             double stiffnessScale, double dt, double duration, unsigned seed) {
+                             double stiffnessScale, double dt, double duration, unsigned seed,
+                             int directions) {
   LoadedScene loaded = registry.loadScene(scene);
   Simulation& sim = *loaded.sim;
   sim.setIntegrator(registry.makeIntegrator(integrator));
@@ -23,9 +24,10 @@ RestGrowth measureRestGrowth(const Registry& registry, const SceneDocument& scen
   StepStabilityOptions options;
   options.relativePerturbation = kRestDisturbance;
   const long steps = std::max(kFewestRestSteps, std::lround(std::ceil(duration / dt)));
-  const StepGrowth g = stepPerturbationGrowth(sim, dt, steps, options, seed);
+  const StepGrowth g = stepPerturbationGrowth(sim, dt, steps, options, seed, directions);
   RestGrowth out;
   out.growth = g.growth;
+  out.growths = g.growths;
   out.finite = g.finite && std::isfinite(g.growth);
   out.dt = dt;
   out.duration = static_cast<double>(steps) * dt;

@@ -4,10 +4,12 @@
 // chain's limit is the smallest over its modes. The step-map estimate never sees these.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <ostream>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -759,9 +761,7 @@ TEST(LandingCloth, TheChartFromRestMeasuresThePredictionAndFromTheStartTheLandin
 // masses on the floor sets in at the limit and the floor caps it (1.2e-3 m/s at 1.04 times the
 // limit), within the 64 times the swing run's that the check allows, so the run from the start
 // survives 1.03 times its limit (the chart measured 1.215 times before the rest check). The
-// rest does not hold there: the disturbance grows past the rest check's limit for the
-// directions of seeds 1 to 4 (the chart and `sim` use seed 1), and holds at 0.97 times the
-// limit. Not for every direction: seed 74 grows 449 times (rest_check.hpp).
+// rest does not hold there and holds at 0.97 times the limit.
 TEST(WindBall, VelocityVerletRestBreaksJustPastTheLimitWhereTheRunFromTheStartSurvives) {
   const SceneDocument ball = shippedScene("softbody_wind.json");
   const std::string method = "velocity_verlet";
@@ -770,14 +770,46 @@ TEST(WindBall, VelocityVerletRestBreaksJustPastTheLimitWhereTheRunFromTheStartSu
   const double duration = 3.0;
   EXPECT_TRUE(trialAt(ball, method, predicted, 1.03).stable) << "the run's own check now sees it: the rest check "
                                                                   "is no longer what catches this row";
-  for (unsigned seed = 1; seed <= 4; ++seed) {
-    auto growth = [&](double factor) {
-      return studies::measureRestGrowth(allLabs(), ball, method, 1.0, factor * predicted, duration, seed);
-    };
-    const studies::RestGrowth half = growth(0.5), below = growth(0.97), past = growth(1.03);
-    EXPECT_TRUE(studies::restCheckApplies(half)) << "seed " << seed << ": " << half.growth;
-    EXPECT_FALSE(studies::restBroken(below)) << "seed " << seed << ": " << below.growth;
-    EXPECT_TRUE(studies::restBroken(past)) << "seed " << seed << ": " << past.growth;
+  auto growth = [&](double factor) {
+    return studies::measureRestGrowth(allLabs(), ball, method, 1.0, factor * predicted, duration);
+  };
+  const studies::RestGrowth half = growth(0.5), below = growth(0.97), past = growth(1.03);
+  EXPECT_TRUE(studies::restCheckApplies(half)) << half.growth;
+  EXPECT_FALSE(studies::restBroken(below)) << below.growth;
+  EXPECT_TRUE(studies::restBroken(past)) << past.growth;
+}
+
+// The verdict does not hang on the disturbance's direction. Past the limit the capped wobble is
+// a limit cycle that alternates every step, and a disturbance sets its phase: where the moved
+// run's wobble ends in step with the reference's, the two stay close (449 times the
+// disturbance for seeds 74, 111, 117, 137, 175; 3.2 times for seed 242, out of 300 directions,
+// where the others grow 2.2e3 to 5e3 times). One direction would call that rest held; the
+// median of kRestDirections decides, and breaks for every three consecutive seeds of 61-180.
+TEST(WindBall, RestBreaksPastTheLimitForEveryThreeDirections) {
+  const SceneDocument ball = shippedScene("softbody_wind.json");
+  const std::string method = "velocity_verlet";
+  const double predicted = studies::sceneStepStableDt(allLabs(), ball, method);
+  ASSERT_TRUE(predicted > 0.0 && std::isfinite(predicted)) << predicted;
+  const unsigned first = 61;
+  const studies::RestGrowth each =
+      studies::measureRestGrowth(allLabs(), ball, method, 1.0, 1.03 * predicted, 3.0, first, 120);
+  ASSERT_EQ(each.growths.size(), 120U);
+  int held = 0;
+  for (double g : each.growths) held += g <= studies::kRestGrowthLimit;
+  EXPECT_GT(held, 0) << "every direction breaks the rest here: the median is no longer needed on this scene";
+  // The check as the chart and `sim` ask it, its first direction one that holds alone.
+  for (std::size_t i = 0; i < each.growths.size(); ++i) {
+    if (each.growths[i] > studies::kRestGrowthLimit) continue;
+    const unsigned seed = first + static_cast<unsigned>(i);
+    const studies::RestGrowth g = studies::measureRestGrowth(allLabs(), ball, method, 1.0, 1.03 * predicted, 3.0, seed);
+    EXPECT_TRUE(studies::restBroken(g)) << "seed " << seed << ": " << g.growth;
+  }
+  for (std::size_t i = 0; i + studies::kRestDirections <= each.growths.size(); ++i) {
+    std::vector<double> three(each.growths.begin() + static_cast<std::ptrdiff_t>(i),
+                              each.growths.begin() + static_cast<std::ptrdiff_t>(i) + studies::kRestDirections);
+    std::sort(three.begin(), three.end());
+    EXPECT_GT(three[three.size() / 2], studies::kRestGrowthLimit)
+        << "seeds " << first + i << " to " << first + i + studies::kRestDirections - 1;
   }
 }
 

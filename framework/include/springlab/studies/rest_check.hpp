@@ -28,6 +28,7 @@
 // own motion separates nearby runs at every dt, and the rest check has nothing to say. The
 // chart and `sim` ask it only past the step's limit (stability.cpp says why).
 #include <string>
+#include <vector>
 
 #include "springlab/registry.hpp"
 #include "springlab/scene_document.hpp"
@@ -35,7 +36,9 @@
 namespace springlab::studies {
 
 struct RestGrowth {
-  double growth = 0.0;  // the runs' largest difference over the disturbance
+  double growth = 0.0;  // the median over the directions of each one's largest difference over
+                        // the disturbance
+  std::vector<double> growths;  // each direction's (+inf: its run ended early)
   bool finite = true;   // both runs stayed finite to the end
   double dt = 0.0;      // s
   double duration = 0.0;  // s, simulated
@@ -44,12 +47,15 @@ struct RestGrowth {
 constexpr double kRestDisturbance = 1e-8;      // of the scene's typical length (velocities: x w_max)
 constexpr double kRestBaselineLimit = 100.0;   // at half the limit, at most: the scene rests
 constexpr double kRestGrowthLimit = 1000.0;    // at dt, more: the rest does not hold
+constexpr int kRestDirections = 3;             // disturbed runs, the median decides
 
 // The two runs at dt over `duration` (at least 200 steps), on a copy of the scene with every
 // spring's k multiplied by stiffnessScale. NotImplemented propagates.
-// `seed` picks the disturbance's direction (the chart and `sim` take 1).
+// `seed` picks the first disturbance's direction, the others seed + 1, ... (the chart and `sim`
+// take 1).
 RestGrowth measureRestGrowth(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                             double stiffnessScale, double dt, double duration, unsigned seed = 1);
+                             double stiffnessScale, double dt, double duration, unsigned seed = 1,
+                             int directions = kRestDirections);
 
 // The check applies (the baseline at half the limit says the scene rests) ...
 bool restCheckApplies(const RestGrowth& baseline);
