@@ -42,7 +42,8 @@ bool restBroken(const RestGrowth& atDt) { return !atDt.finite || atDt.growth > k
 
 std::string describeRestGrowth(const RestGrowth& atDt, const RestGrowth& baseline) {
   std::ostringstream s;
-  s << "a disturbance of " << kRestDisturbance << " of the scene's size ";
+  s << "a disturbance of " << kRestDisturbance << " of the scene's size (the median of " << atDt.growths.size()
+    << " directions) ";
   if (atDt.finite) s << "grows " << std::setprecision(2) << atDt.growth << "-fold";
   else s << "grows until the state is not finite";
   s << std::setprecision(6) << " within " << atDt.duration << " s at dt = " << atDt.dt << " s (at half the limit: "
