@@ -46,11 +46,10 @@ class HalfLimitRuns {
 
   // Whether a trial at dt is held to the rest check: only past the step's limit (twice the
   // swing's dt), as detectors 5 and 6, and where the scene rests at half the limit. Below the
-  // limit the runs from where the settling stopped go where the limit was not computed: the
-  // ball dropped on its floor (the settling stops in the air, 1.78 ms under symplectic Euler)
-  // lands and rests on the floor, whose limit is 1.57 ms, and held to its rest below the limit
-  // the chart measured 0.84 times the prediction (1.50 ms, below the floor's limit too: the
-  // landing's contacts part the two runs, not one state's step).
+  // limit it was tried when the settling stopped a falling body in the air: the ball dropped on
+  // its floor, settled in the air (1.78 ms under symplectic Euler), rests on the floor, and held
+  // to that rest the chart measured 0.84 times the prediction. The settling now follows a fall
+  // to its rest (1.47 ms); the check below the limit has not been tried again.
   bool restCheckApplies(double dt) {
     if (!(swingDt_ > 0.0) || dt <= 2.0 * swingDt_) return false;
     std::call_once(restOnce_, [&] {

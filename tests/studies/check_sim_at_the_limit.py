@@ -36,6 +36,8 @@ ROWS = [
     # The stretch limit's projection slows the growth below what the run's check sees in 2 s.
     ("net_trampoline", "position_verlet", 2.06),
     ("softbody_pillow_obj", "velocity_verlet", 4.35),
+    # The dropped ball at its rest on the floor: the floor caps the mode; the rest check sees it.
+    ("softbody_ball", "symplectic_euler", 3.04),
 ]
 
 LIMIT = re.compile(r"times the step's stability limit \(([0-9.eE+-]+) s\)")

@@ -4,10 +4,12 @@
 // chain's limit is the smallest over its modes. The step-map estimate never sees these.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <ostream>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -331,10 +333,12 @@ TEST(RopeOnTheGround, TheActiveContactSetsTheLimitAndTheRunsAgree) {
 }
 
 // ---- pressure: the soft ball with its gas in from the start --------------------------------
+// The ball in flight: without gravity it stays where it starts, a metre above its floor (with
+// gravity the settling follows it down to its rest on the floor).
 SceneDocument inflatedBall(double gas, int subdivisions = 2) {
   SceneDocument d = shippedScene("softbody_ball.json");
   for (const std::string& s : {"softbody.mesh.subdivisions=" + std::to_string(subdivisions), "softbody.gas.nRT=" + std::to_string(gas),
-                               std::string("softbody.gas.inflation_time=0")}) {
+                               std::string("softbody.gas.inflation_time=0"), std::string("gravity=[0,0,0]")}) {
     d.set(s);
   }
   return d;
@@ -376,46 +380,51 @@ TEST(InflatedBall, ExplicitEulerFailsFirstOnTheWobbleTheAirAloneDamps) {
 }
 
 // ---- the ball on the floor: the contact's damper lowers the limit where the ball touches ---------
-// The limit belongs to a state. In flight (gas in from the start) symplectic Euler's is
-// 1.78 ms; resting on the floor 1.57 ms: each vertex on the floor has the contact's damper on
+// The limit belongs to a state. In flight (no gravity, gas in from the start) symplectic Euler's
+// is 1.78 ms; resting on the floor 1.47 ms: each vertex on the floor has the contact's damper on
 // top of its springs' (c / m = 0.5 N s/m x 642 / kg = 321 /s), and symplectic Euler's rule
 // w^2 dt^2 + 2 gamma dt < 4 takes every bit of damping off its step. Without that damper the
-// floor changes nothing (its spring, k / m = 3.2e5 /s^2, is softer than the springs' modes).
-// The shipped ball is predicted where its settling stops, still falling; dropped at 0.97 times
-// that, it is stopped in its first squash (the chart's measured limit, 0.963 times the
-// prediction), its message naming dt from the limit where it was stopped; at 0.97 times the
-// limit on the floor it is not stopped.
+// floor changes little (its spring, k / m = 3.2e5 /s^2, is softer than the springs' modes).
+// The shipped ball, dropped from 1 m, is predicted where it comes to rest: the settling follows
+// its flight (0.45 s) and its landing, as a plain run does (the oracle: symplectic Euler at 1 ms
+// for 12 s, the ball bouncing to rest; its limit there). It was predicted in the air, where the
+// settling's budget ran out (1.78 ms), and a run at 0.97 times that was stopped in its first
+// squash. The runs agree with the rest's limit: 0.97 times survives, and the chart's bisection,
+// its trials past the limit held to the rest check, measures it.
 TEST(BallOnTheFloor, TheContactsDamperLowersTheLimitWhereTheBallTouches) {
   const SceneDocument inFlight = inflatedBall(30, 3);
-  SceneDocument onFloor = inFlight;
+  SceneDocument onFloor = shippedScene("softbody_ball.json");
   onFloor.set("softbody.center=[0,0.5,0]");
+  onFloor.set("softbody.gas.inflation_time=0");
   SceneDocument onFloorUndamped = onFloor;
   onFloorUndamped.set("softbody.contact.damping=0");
   const double flying = studies::sceneStepStableDt(allLabs(), inFlight, "symplectic_euler");
   const double resting = studies::sceneStepStableDt(allLabs(), onFloor, "symplectic_euler");
   const double restingUndamped = studies::sceneStepStableDt(allLabs(), onFloorUndamped, "symplectic_euler");
   EXPECT_LT(resting, 0.92 * flying) << "on the floor " << resting << " s, in flight " << flying << " s";
-  EXPECT_NEAR(restingUndamped / flying, 1.0, 0.01) << "the floor without its damper: " << restingUndamped << " s";
+  EXPECT_NEAR(restingUndamped / flying, 1.0, 0.015) << "the floor without its damper: " << restingUndamped << " s";
 
   const SceneDocument dropped = shippedScene("softbody_ball.json");
+  LoadedScene rested = allLabs().loadScene(dropped);
+  while (rested.sim->state.time < 12.0) rested.sim->operate(1e-3);
+  ASSERT_LT(rested.sim->energies().kinetic, 0.1) << "the oracle's run has not come to rest";
+  LoadedScene probe = allLabs().loadScene(dropped);
+  StepStabilityOptions atRest;
+  atRest.at = rested.sim->state;
+  const double oracle = stepStableDt(*probe.sim, atRest);
   const double predicted = studies::sceneStepStableDt(allLabs(), dropped, "symplectic_euler");
-  EXPECT_NEAR(predicted / flying, 1.0, 0.01) << "the shipped ball is predicted in flight: " << predicted << " s";
-  // The chart's trial, sampled every step to see where it stops.
-  const double dt = 0.97 * predicted;
-  studies::RunSpec spec{dropped, "symplectic_euler", dt, 1,
-                        static_cast<int>(std::ceil(studies::defaultStabilityDuration(2.0 / flying) / dt))};
-  spec.keepPositions = false;
-  spec.swingDt = 0.5 * predicted;
-  const studies::RunResult fast = studies::runScene(allLabs(), spec);
-  ASSERT_FALSE(fast.stable) << "at 0.97 x the prediction in flight the first squash gains energy";
-  const std::vector<double> lowest = studies::observableSeries(fast, "lowest_point");
-  ASSERT_FALSE(lowest.empty());
-  EXPECT_LT(lowest.back(), 0.0) << "stopped at t = " << fast.times.back() << " s, not touching the floor: " << fast.failure;
-  // The message names dt as the cause, from the limit where the run was stopped.
-  EXPECT_NE(fast.failure.find("but not below its limit where the run was stopped"), std::string::npos) << fast.failure;
-  EXPECT_NE(fast.failure.find("Likely cause: dt, in a state stiffer than the rest"), std::string::npos) << fast.failure;
-  const studies::RunResult slow = trialAt(dropped, "symplectic_euler", resting, 0.97);
-  EXPECT_TRUE(slow.stable) << slow.failure;
+  EXPECT_NEAR(predicted / oracle, 1.0, 0.02) << "predicted " << predicted << " s, at the plain run's rest " << oracle << " s";
+  EXPECT_NEAR(predicted / resting, 1.0, 0.02) << "dropped " << predicted << " s, placed on the floor " << resting << " s";
+  const studies::RunResult below = trialAt(dropped, "symplectic_euler", predicted, 0.97);
+  EXPECT_TRUE(below.stable) << "0.97 x " << predicted << " s: " << below.failure;
+  // Past the limit the floor caps the growing mode, and the rest check sees it (the run's own
+  // check lets 1.03 times the limit run to the end): the chart measures the limit.
+  studies::StabilityOptions o;
+  o.integrators = {"symplectic_euler"};
+  o.threads = 1;
+  o.progress = false;
+  const studies::CriticalDt m = studies::stability(allLabs(), dropped, o).methods.at(0);
+  EXPECT_NEAR(m.measured / m.predicted, 1.0, 0.03) << m.measured << " s measured, " << m.predicted << " s predicted";
 }
 
 // ---- a dropped body: linearised at its rest on what it fell on, not at its impact ------------------
@@ -759,9 +768,7 @@ TEST(LandingCloth, TheChartFromRestMeasuresThePredictionAndFromTheStartTheLandin
 // masses on the floor sets in at the limit and the floor caps it (1.2e-3 m/s at 1.04 times the
 // limit), within the 64 times the swing run's that the check allows, so the run from the start
 // survives 1.03 times its limit (the chart measured 1.215 times before the rest check). The
-// rest does not hold there: the disturbance grows past the rest check's limit for the
-// directions of seeds 1 to 4 (the chart and `sim` use seed 1), and holds at 0.97 times the
-// limit. Not for every direction: seed 74 grows 449 times (rest_check.hpp).
+// rest does not hold there and holds at 0.97 times the limit.
 TEST(WindBall, VelocityVerletRestBreaksJustPastTheLimitWhereTheRunFromTheStartSurvives) {
   const SceneDocument ball = shippedScene("softbody_wind.json");
   const std::string method = "velocity_verlet";
@@ -770,14 +777,41 @@ TEST(WindBall, VelocityVerletRestBreaksJustPastTheLimitWhereTheRunFromTheStartSu
   const double duration = 3.0;
   EXPECT_TRUE(trialAt(ball, method, predicted, 1.03).stable) << "the run's own check now sees it: the rest check "
                                                                   "is no longer what catches this row";
-  for (unsigned seed = 1; seed <= 4; ++seed) {
-    auto growth = [&](double factor) {
-      return studies::measureRestGrowth(allLabs(), ball, method, 1.0, factor * predicted, duration, seed);
-    };
-    const studies::RestGrowth half = growth(0.5), below = growth(0.97), past = growth(1.03);
-    EXPECT_TRUE(studies::restCheckApplies(half)) << "seed " << seed << ": " << half.growth;
-    EXPECT_FALSE(studies::restBroken(below)) << "seed " << seed << ": " << below.growth;
-    EXPECT_TRUE(studies::restBroken(past)) << "seed " << seed << ": " << past.growth;
+  auto growth = [&](double factor) {
+    return studies::measureRestGrowth(allLabs(), ball, method, 1.0, factor * predicted, duration);
+  };
+  const studies::RestGrowth half = growth(0.5), below = growth(0.97), past = growth(1.03);
+  EXPECT_TRUE(studies::restCheckApplies(half)) << half.growth;
+  EXPECT_FALSE(studies::restBroken(below)) << below.growth;
+  EXPECT_TRUE(studies::restBroken(past)) << past.growth;
+}
+
+// The verdict does not hang on the disturbance's direction: at 1.03 times the limit each of 60
+// directions (seeds 1-60) breaks the rest alone, at 0.97 times each holds, and the check's
+// growth is their median. Past the limit the capped wobble is a limit cycle that flips sign
+// every step, and a disturbance sets its phase: where the moved run's wobble ends in step with
+// the reference's the two stay close. Linearised where its settling stopped before it followed
+// the ball's fall (1.445 ms), 9 of 300 directions did so at 1.03 times (449 times the disturbance,
+// once 3.2 times), hence the median of three; at 1.01 times the present limit 4 of 120 do
+// (22-994 times), and every three consecutive seeds' median breaks there.
+TEST(WindBall, RestVerdictIsTheSameForEveryDirection) {
+  const SceneDocument ball = shippedScene("softbody_wind.json");
+  const std::string method = "velocity_verlet";
+  const double predicted = studies::sceneStepStableDt(allLabs(), ball, method);
+  ASSERT_TRUE(predicted > 0.0 && std::isfinite(predicted)) << predicted;
+  const int directions = 60;
+  for (const double factor : {0.97, 1.03}) {
+    const studies::RestGrowth each =
+        studies::measureRestGrowth(allLabs(), ball, method, 1.0, factor * predicted, 3.0, 1, directions);
+    ASSERT_EQ(each.growths.size(), static_cast<std::size_t>(directions));
+    for (int d = 0; d < directions; ++d) {
+      const double g = each.growths[static_cast<std::size_t>(d)];
+      if (factor < 1.0) EXPECT_LE(g, studies::kRestGrowthLimit) << "seed " << d + 1 << " at " << factor;
+      else EXPECT_GT(g, studies::kRestGrowthLimit) << "seed " << d + 1 << " at " << factor;
+    }
+    std::vector<double> sorted = each.growths;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(each.growth, sorted[sorted.size() / 2]) << "the check's growth is the directions' median";
   }
 }
 

@@ -37,6 +37,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "springlab/simulation.hpp"
 
@@ -80,21 +81,23 @@ struct StepSpectrum {
 StepSpectrum stepSpectralRadius(Simulation& sim, double dt, const StepStabilityOptions& options = {});
 
 // How much the real step (not linearised) amplifies a small perturbation of the state the
-// radius is computed at: two runs of `steps` steps at dt from that state, one of them moved
-// by options.relativePerturbation in a pseudo-random direction (every coordinate, not only the
-// modes the radius probes), compared about 256 times along the way. An independent check of
-// the radius: past the limit the difference grows until something nonlinear caps it or the
-// run turns non-finite; within it, it stays within the step's transient amplification.
+// radius is computed at: a run of `steps` steps at dt from that state, and `directions` more,
+// each moved by options.relativePerturbation in a pseudo-random direction (every coordinate,
+// not only the modes the radius probes; seeds seed, seed + 1, ...), compared with the first about
+// 256 times along the way. An independent check of the radius: past the limit the difference
+// grows until something nonlinear caps it or the run turns non-finite; within it, it stays
+// within the step's transient amplification.
 struct StepGrowth {
-  double growth = 0.0;  // largest difference of the velocities over the perturbation (velocities
-                        // over length x w_max, as the perturbation): a drift along a free direction
-                        // grows the positions' difference, not the velocities'
-  double last = 0.0;    // that difference at the runs' end
-  bool finite = true;   // both runs stayed finite (and no step threw) to the end
+  double growth = 0.0;  // the median over the directions of each one's largest difference of the
+                        // velocities over the perturbation (velocities over length x w_max, as the
+                        // perturbation): a drift along a free direction grows the positions'
+                        // difference, not the velocities'
+  std::vector<double> growths;  // each direction's (+inf: its run ended early)
+  bool finite = true;   // the median direction's run stayed finite (and no step threw) to the end
   int steps = 0;        // steps of the scene taken (the settling's included)
 };
 StepGrowth stepPerturbationGrowth(Simulation& sim, double dt, long steps, const StepStabilityOptions& options = {},
-                                  unsigned seed = 1);
+                                  unsigned seed = 1, int directions = 1);
 
 // The largest dt with spectral radius <= 1 + slack. `firstGuess` starts the bracket (the
 // undamped c / w_max, or 2 / w_max); +inf when stable up to largestFactor x firstGuess, 0
