@@ -20,7 +20,8 @@
 //   everything and the eigenvalues are J's own (dense, exact up to the finite differences).
 // - Larger ones: runs along the modes that fail first, the stiffest modes of M^-1 K, the
 //   most damped of M^-1 C and the stiffest for their damping (largest w^2 / gamma, where
-//   explicit Euler fails: a ball's wobble that only the air damps) at the settled state
+//   explicit Euler fails: a ball's wobble that only the air and the floor damp; two Lanczos
+//   runs where the first finds ratios well above the stiffest mode's) at the settled state
 //   (Lanczos on finite differences of the forces), each as a displacement and as a velocity. For a linear scene with proportional
 //   damping (spring dampers on the springs' pairs, air) this subspace is invariant under the
 //   step and the result is exact; with other damping, contacts or pressure it is the
@@ -45,7 +46,8 @@ namespace springlab {
 
 struct StepStabilityOptions {
   int modes = 8;                 // stiffest and most damped modes each, half as many stiffest
-                                 // for their damping: 5 x modes runs per dt
+                                 // for their damping (twice that where a second run finds
+                                 // more): 5 to 6 x modes runs per dt
   int denseBelow = 500;          // build the whole Jacobian when the free coordinates (positions
                                  // and velocities) number at most this (the 80-mass rope: 480;
                                  // its modal runs missed both Verlets' limits 20-fold, since the
