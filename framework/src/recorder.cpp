@@ -77,7 +77,19 @@ void Recorder::record(const Simulation& sim) {
   }
 }
 
+// A run left by an exception (a step that threw, a missing exercise): the document is ended
+// all the same, so that what was recorded can be read.
+Recorder::~Recorder() {
+  if (closed_) return;
+  try {
+    close("the run stopped before its last step (an error, see the program's message)");
+  } catch (...) {
+    // A destructor must not throw; the file is then left as far as it was written.
+  }
+}
+
 void Recorder::close(const std::string& status) {
+  closed_ = true;
   if (json_) out_ << "\n ],\n \"status\": " << nlohmann::json(status).dump() << "\n}\n";
   out_.close();
   if (!out_) throw std::runtime_error(path_ + ": writing the output file failed");

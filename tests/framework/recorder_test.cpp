@@ -68,6 +68,18 @@ TEST(Recorder, JsonFramesAreOnDiskBeforeTheRunEnds) {
   EXPECT_DOUBLE_EQ(doc["frames"][2]["time"].get<double>(), 0.02);
 }
 
+TEST(Recorder, AJsonRunLeftByAnExceptionIsStillADocument) {
+  testing::AnchoredOscillators sim(1, 1.0, 1.0);
+  const std::string path = ::testing::TempDir() + "unfinished.json";
+  {
+    Recorder r(path, SceneSettings{}, sim);
+    r.record(sim);
+  }
+  const auto doc = nlohmann::json::parse(slurp(path));
+  EXPECT_EQ(doc["frames"].size(), 1u);
+  EXPECT_NE(doc["status"].get<std::string>().find("stopped before its last step"), std::string::npos);
+}
+
 TEST(Recorder, AJsonRunWithNoFrameIsAnEmptyList) {
   testing::AnchoredOscillators sim(1, 1.0, 1.0);
   const std::string path = ::testing::TempDir() + "empty.json";
