@@ -25,14 +25,18 @@ Recorder::Recorder(const std::string& path, const SceneSettings& settings, const
   if (!out_) throw std::runtime_error(path + ": cannot write the output file");
   out_ << std::setprecision(17);
 
-  // Header: what was run, so a file is self-describing.
+  // Header: what was run, so a file is self-describing. JSON: the document is opened here,
+  // its frames follow one by one, and close() ends it with the run's status.
   if (json_) {
-    document_["scene"] = settings.file;
-    document_["lab"] = settings.lab;
-    document_["integrator"] = sim.integrator().name();
-    document_["dimension"] = sim.dimension;
-    document_["masses"] = sim.numOfMasses();
-    document_["frames"] = nlohmann::json::array();
+    const nlohmann::json header = {{"scene", settings.file},
+                                   {"lab", settings.lab},
+                                   {"integrator", sim.integrator().name()},
+                                   {"dimension", sim.dimension},
+                                   {"masses", sim.numOfMasses()}};
+    const std::string text = header.dump(1);
+    // The header's members without its closing brace, then the frames' array.
+    const std::size_t lastMember = text.find_last_not_of("\n ", text.rfind('}') - 1);
+    out_ << text.substr(0, lastMember + 1) << ",\n \"frames\": [";
   } else {
     out_ << "frame,time,mass,x,y,z,vx,vy,vz,kinetic,gravitational,elastic,other,total,px,py,pz\n";
   }
@@ -59,10 +63,10 @@ void Recorder::record(const Simulation& sim) {
       pos.push_back(toJson(sim.state.pos[i]));
       vel.push_back(toJson(sim.state.vel[i]));
     }
-    document_["frames"].push_back(std::move(frame));
+    out_ << (frames_++ == 0 ? "\n" : ",\n") << frame.dump() << std::flush;
     return;
   }
-  const long frame = csvFrames_++;
+  const long frame = frames_++;
   for (int i = 0; i < sim.numOfMasses(); ++i) {
     const Vec3& x = sim.state.pos[i];
     const Vec3& v = sim.state.vel[i];
@@ -73,11 +77,20 @@ void Recorder::record(const Simulation& sim) {
   }
 }
 
-void Recorder::close(const std::string& status) {
-  if (json_) {
-    document_["status"] = status;
-    out_ << document_.dump(1) << '\n';
+// A run left by an exception (a step that threw, a missing exercise): the document is ended
+// all the same, so that what was recorded can be read.
+Recorder::~Recorder() {
+  if (closed_) return;
+  try {
+    close("the run stopped before its last step (an error, see the program's message)");
+  } catch (...) {
+    // A destructor must not throw; the file is then left as far as it was written.
   }
+}
+
+void Recorder::close(const std::string& status) {
+  closed_ = true;
+  if (json_) out_ << "\n ],\n \"status\": " << nlohmann::json(status).dump() << "\n}\n";
   out_.close();
   if (!out_) throw std::runtime_error(path_ + ": writing the output file failed");
 }

@@ -46,6 +46,50 @@ TEST(Recorder, WritesJsonFramesWithEnergies) {
   EXPECT_TRUE(doc["frames"][0]["energy"].contains("total"));
 }
 
+// Frames go to the file as they are recorded: a long run does not hold them in memory, and a
+// run stopped midway leaves the frames it made. The status closes the document (escaped).
+TEST(Recorder, JsonFramesAreOnDiskBeforeTheRunEnds) {
+  testing::AnchoredOscillators sim(2, 1.0, 1.0);
+  const std::string path = ::testing::TempDir() + "streamed.json";
+  Recorder r(path, SceneSettings{}, sim);
+  for (int k = 0; k < 3; ++k) {
+    r.record(sim);
+    sim.operate(0.01);
+  }
+  const std::string before = slurp(path);
+  std::size_t frames = 0;
+  for (std::size_t at = before.find("\"time\""); at != std::string::npos; at = before.find("\"time\"", at + 1)) ++frames;
+  EXPECT_EQ(frames, 3u) << before;
+  r.close("blew up: \"energy\" rose");
+  const auto doc = nlohmann::json::parse(slurp(path));
+  EXPECT_EQ(doc["frames"].size(), 3u);
+  EXPECT_EQ(doc["status"], "blew up: \"energy\" rose");
+  EXPECT_EQ(doc["integrator"], sim.integrator().name());
+  EXPECT_DOUBLE_EQ(doc["frames"][2]["time"].get<double>(), 0.02);
+}
+
+TEST(Recorder, AJsonRunLeftByAnExceptionIsStillADocument) {
+  testing::AnchoredOscillators sim(1, 1.0, 1.0);
+  const std::string path = ::testing::TempDir() + "unfinished.json";
+  {
+    Recorder r(path, SceneSettings{}, sim);
+    r.record(sim);
+  }
+  const auto doc = nlohmann::json::parse(slurp(path));
+  EXPECT_EQ(doc["frames"].size(), 1u);
+  EXPECT_NE(doc["status"].get<std::string>().find("stopped before its last step"), std::string::npos);
+}
+
+TEST(Recorder, AJsonRunWithNoFrameIsAnEmptyList) {
+  testing::AnchoredOscillators sim(1, 1.0, 1.0);
+  const std::string path = ::testing::TempDir() + "empty.json";
+  Recorder r(path, SceneSettings{}, sim);
+  r.close("ok");
+  const auto doc = nlohmann::json::parse(slurp(path));
+  EXPECT_TRUE(doc["frames"].is_array());
+  EXPECT_EQ(doc["frames"].size(), 0u);
+}
+
 TEST(Recorder, RejectsAnUnknownExtension) {
   testing::AnchoredOscillators sim(1, 1.0, 1.0);
   EXPECT_THROW(Recorder(::testing::TempDir() + "run.txt", SceneSettings{}, sim), std::invalid_argument);

@@ -428,9 +428,9 @@ TEST(BallOnTheFloor, TheContactsDamperLowersTheLimitWhereTheBallTouches) {
 }
 
 // ---- the ball on the floor: the wobble only the air and the floor's damper damp -------------------
-// On the floor the ball's sideways wobble (the coarse ball: 108 rad/s, damping ratio 0.011) is
-// still damped by little more than the air, and explicit Euler's limit on it, gamma / w^2, is
-// its limit. The modal directions rank the modes by their ratio w^2 / gamma, starting from the
+// On the floor the ball's sideways wobble (the coarse ball: 108 rad/s, damping ratio 0.011: the
+// air and the floor's damper on the few masses that touch) is lightly damped, and explicit
+// Euler's limit on it, gamma / w^2, is its limit. The modal directions rank the modes by their ratio w^2 / gamma, starting from the
 // stiffest mode's: the first Lanczos run's top is set by the stiffness, and on the floor it
 // missed the wobble (1.0 ms against 0.21 ms with every direction); the second run, at the largest
 // ratio the first found, holds it. The oracle is every direction (the dense Jacobian of the

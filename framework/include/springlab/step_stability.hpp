@@ -46,8 +46,9 @@ namespace springlab {
 
 struct StepStabilityOptions {
   int modes = 8;                 // stiffest and most damped modes each, half as many stiffest
-                                 // for their damping (twice that where a second run finds
-                                 // more): 5 to 6 x modes runs per dt
+                                 // for their damping (twice that where the first run's
+                                 // largest ratio exceeds 1.5 times the stiffest mode's): 5 to 6
+                                 // x modes runs per dt
   int denseBelow = 500;          // build the whole Jacobian when the free coordinates (positions
                                  // and velocities) number at most this (the 80-mass rope: 480;
                                  // its modal runs missed both Verlets' limits 20-fold, since the
