@@ -344,6 +344,16 @@ SceneDocument inflatedBall(double gas, int subdivisions = 2) {
   return d;
 }
 
+// Explicit Euler's limit on a scene with the whole Jacobian for up to denseBelow coordinates
+// (100000: every direction, the oracle) or the modal directions only (0).
+double explicitEulerLimit(const SceneDocument& scene, int denseBelow) {
+  LoadedScene loaded = allLabs().loadScene(scene);
+  loaded.sim->setIntegrator(allLabs().makeIntegrator("explicit_euler"));
+  StepStabilityOptions o;
+  o.denseBelow = denseBelow;
+  return stepStableDt(*loaded.sim, o);
+}
+
 TEST(InflatedBall, PressureLowersTheLimitAndTheRunsAgree) {
   const double soft = studies::sceneStepStableDt(allLabs(), inflatedBall(30), "symplectic_euler");
   const double hard = studies::sceneStepStableDt(allLabs(), inflatedBall(1000), "symplectic_euler");
@@ -363,15 +373,8 @@ TEST(InflatedBall, PressureLowersTheLimitAndTheRunsAgree) {
 // errs high: a limit a little low, on the safe side (this inflated ball: 0.194 against 0.199 ms).
 TEST(InflatedBall, ExplicitEulerFailsFirstOnTheWobbleTheAirAloneDamps) {
   const SceneDocument ball = inflatedBall(30);
-  auto limit = [&](int denseBelow) {
-    LoadedScene loaded = allLabs().loadScene(ball);
-    loaded.sim->setIntegrator(allLabs().makeIntegrator("explicit_euler"));
-    StepStabilityOptions o;
-    o.denseBelow = denseBelow;
-    return stepStableDt(*loaded.sim, o);
-  };
-  const double everyDirection = limit(100000);
-  const double modal = limit(0);
+  const double everyDirection = explicitEulerLimit(ball, 100000);
+  const double modal = explicitEulerLimit(ball, 0);
   ASSERT_TRUE(std::isfinite(everyDirection) && everyDirection > 0.0) << everyDirection;
   EXPECT_GT(modal, 0.95 * everyDirection) << "modal " << modal << " s, every direction " << everyDirection << " s";
   EXPECT_LT(modal, 1.02 * everyDirection) << "modal " << modal << " s, every direction " << everyDirection << " s";
@@ -440,15 +443,8 @@ TEST(BallOnTheFloor, TheContactsDamperLowersTheLimitWhereTheBallTouches) {
 TEST(BallOnTheFloor, ExplicitEulerFailsFirstOnTheWobbleTheFloorLeavesToTheAir) {
   SceneDocument ball = shippedScene("softbody_ball.json");
   ball.set("softbody.mesh.subdivisions=2");
-  auto limit = [&](int denseBelow) {
-    LoadedScene loaded = allLabs().loadScene(ball);
-    loaded.sim->setIntegrator(allLabs().makeIntegrator("explicit_euler"));
-    StepStabilityOptions o;
-    o.denseBelow = denseBelow;
-    return stepStableDt(*loaded.sim, o);
-  };
-  const double everyDirection = limit(100000);
-  const double modal = limit(0);
+  const double everyDirection = explicitEulerLimit(ball, 100000);
+  const double modal = explicitEulerLimit(ball, 0);
   ASSERT_TRUE(std::isfinite(everyDirection) && everyDirection > 0.0) << everyDirection;
   EXPECT_NEAR(modal / everyDirection, 1.0, 0.08) << "modal " << modal << " s, every direction " << everyDirection << " s";
 }
