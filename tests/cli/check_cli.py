@@ -58,6 +58,10 @@ with tempfile.TemporaryDirectory() as tmp:
 
     expect("unknown integrator option", run(reference, "sim", str(scenes / "rope.json"), "--steps", "10", "--out", out,
                                             "--integrator", "magic"), 2, "unknown integrator")
+    # A file of every step that its disk cannot hold (80 masses x 1e10 steps: about 1e5 GB) is
+    # refused before the run, naming the file and the --save-every that would fit.
+    expect("output larger than its disk", run(reference, "sim", str(scenes / "rope.json"), "--steps", "10000000000",
+                                              "--out", out), 2, out, "GB free", "--save-every 960001")
     expect("bad output extension", run(reference, "sim", str(scenes / "rope.json"), "--steps", "10", "--out",
                                        str(tmp / "out.txt")), 2, ".json or .csv")
 
