@@ -96,6 +96,8 @@ void Simulation::evaluateForces(const State& s, std::vector<Vec3>& f) {
   const PhaseProfile::Scope forces(profile, Phase::kForces);
   f.assign(masses.size(), Vec3::Zero());
   accumulateForces(s, f);
+  if (holdingLoad_.size() == f.size())
+    for (std::size_t i = 0; i < f.size(); ++i) f[i] += holdingLoad_[i];
   ++stats.forceEvaluations;
 }
 

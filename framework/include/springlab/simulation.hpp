@@ -106,6 +106,10 @@ class Simulation {
   // ---- what integrators use ----------------------------------------------------------
   // Forces at an arbitrary state (not necessarily the current one); counts one evaluation.
   void evaluateForces(const State& s, std::vector<Vec3>& f);
+  // A constant force per mass added to every evaluation (empty: none). The stability
+  // instrument's: it holds a state that is not a rest in place, so that a step is linearised
+  // there as at a rest (step_stability.cpp). Not part of the scene's energies.
+  void setHoldingLoad(std::vector<Vec3> load) { holdingLoad_ = std::move(load); }
   // 1/m, or 0 for a mass moved only by the scene (pinned or grabbed by the user).
   // Inline: integrators call it for every mass in every step.
   double inverseMass(int i) const {
@@ -299,6 +303,7 @@ class Simulation {
   BlowUpCheck blowUpCheck_;
   bool blowUpCheckEnabled_ = true;
   std::optional<double> knownStepLimit_;  // s, setKnownStepLimit
+  std::vector<Vec3> holdingLoad_;          // N per mass, setHoldingLoad
   double sourceWork_ = 0.0;                // J, sourceWork()
   bool lastStepWorkKnown_ = true;
   double correctionWork_ = 0.0;            // J, correctionWork()

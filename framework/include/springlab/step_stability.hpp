@@ -35,15 +35,11 @@
 // symplectic Euler's w^2 dt^2 + 2 gamma dt < 4, the stability polynomials of RK4 and the
 // midpoint rule) is a test of this, not part of it.
 //
-// Known gap (issue 29): the settled state is where the first swing turned, not a rest. For
-// an explicit step that is close enough; a linear solve's step (implicit Euler) linearised
-// away from rest has a term that grows with dt (its matrix's change times its solution, which
-// carries the residual force), and its limit on the hanging cloth comes out 47.6 ms (32 x 32)
-// where its step at a plain run's rest is stable at every dt (implicit_rest_limit_test.cpp;
-// pass that rest as StepStabilityOptions::at and the limit is unbounded). Settling implicit
-// methods on with their own growing step reached the rest on the 8 x 8 cloth only: the
-// clamped Jacobian converges linearly (0.95 a step on the 32 x 32 cloth), and stretch
-// limiting, wind and contacts keep the others from resting.
+// An implicit method (a linear solve per step) is linearised at the settled state with a
+// constant load that cancels the force left there, as at a rest: away from rest its step's
+// Jacobian has a term that grows with dt (step_stability.cpp, LinearisedRuns), which gave
+// implicit Euler a limit of 47.6 ms on the 32 x 32 hanging cloth where it has none
+// (implicit_rest_limit_test.cpp).
 #include <functional>
 #include <optional>
 #include <stdexcept>
