@@ -101,8 +101,9 @@ class LinearisedRuns {
     // dt the step is a Newton step towards the equilibrium): on the 32 x 32 hanging cloth it
     // made implicit Euler's limit 47.6 ms, where its runs at 160 ms settle to the same drape and
     // its step at a plain run's rest is stable at every dt. A constant force has no Jacobian:
-    // nothing else of the step changes (the per-particle blocks' limits move by under 0.5 %,
-    // but on the slope in strong wind, 11.8 ms -> unbounded). Explicit methods are left as
+    // nothing else of the step changes (the per-particle blocks' limits move by up to 4 %, the
+    // trampoline's 3.18 -> 3.31 ms, and on the slope in strong wind 11.8 ms -> none). Explicit
+    // methods are left as
     // they were (their limits were checked against runs from this state).
     if (!base_.pos.empty() && !given_ && sim_.integrator().restsAtStaticEquilibrium() &&
         !std::isfinite(sim_.integrator().stabilityConstant())) {
