@@ -103,8 +103,7 @@ class LinearisedRuns {
     // its step at a plain run's rest is stable at every dt. A constant force has no Jacobian:
     // nothing else of the step changes (the per-particle blocks' limits move by up to 4 %, the
     // trampoline's 3.18 -> 3.31 ms, and on the slope in strong wind 11.8 ms -> none). Explicit
-    // methods are left as
-    // they were (their limits were checked against runs from this state).
+    // methods are left as they were (their limits were checked against runs from this state).
     if (!base_.pos.empty() && !given_ && sim_.integrator().restsAtStaticEquilibrium() &&
         !std::isfinite(sim_.integrator().stabilityConstant())) {
       std::vector<Vec3> residual;
