@@ -50,6 +50,9 @@ ROWS = [
 RESTING = [
     ("net_sphere_drop", "explicit_euler", 0.67),
     ("net_self_collision", "explicit_euler", 0.74),
+    # The ball under the user's sphere: at 1.03 times its limit the wobble on the floor grows for
+    # 14 s before the check sees it (the chart's trial of 3 s measured 1.06 times the limit).
+    ("softbody_user_sphere", "explicit_euler", 30.0),
 ]
 
 LIMIT = re.compile(r"times the step's stability limit \(([0-9.eE+-]+) s\)")

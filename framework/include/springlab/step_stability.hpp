@@ -112,7 +112,9 @@ StepGrowth stepPerturbationGrowth(Simulation& sim, double dt, long steps, const 
 // undamped c / w_max, or 2 / w_max); +inf when stable up to largestFactor x firstGuess, 0
 // when unstable down to smallestFactor x firstGuess; NaN when the step is not smooth at the
 // state (a contact switching exactly there: its finite differences change with the
-// perturbation's size), where a linearised limit does not exist.
+// perturbation's size), where a linearised limit does not exist. Where a fallen body rests
+// on what it hit, the masses its contacts hold one-sidedly are held first (left out of the
+// modal directions, as the contact leaves them), and the limit is that of the rest.
 struct StepStabilityLimit {
   double dt = 0.0;     // s
   int evaluations = 0; // spectral radii computed
