@@ -255,12 +255,11 @@ class LinearisedRuns {
       const double larger = std::max(std::abs(up[r]), std::abs(down[r]));
       if (larger > floor && std::abs(up[r] + down[r]) > 0.1 * larger) mass[static_cast<std::size_t>(dofs_[r % n].mass)] = 1;
     }
-    int count = 0;
     for (int j = 0; j < n; ++j) {
       const char h = mass[static_cast<std::size_t>(dofs_[j].mass)];
       held[static_cast<std::size_t>(j)] = held[static_cast<std::size_t>(n + j)] = h;
     }
-    for (char m : mass) count += m;
+    const int count = static_cast<int>(std::count(mass.begin(), mass.end(), 1));
     if (count == 0) held.clear();
     return count;
   }
@@ -279,7 +278,7 @@ class LinearisedRuns {
   int steps() const { return steps_; }
   // Whether the runs start where a free body that fell has come to rest on what it hit (its
   // impact's ringing damped away, settledState), contacts pressed by its weight.
-  bool restsAfterImpact() const { return afterImpact_ && !given_; }
+  bool restsAfterImpact() const { return afterImpact_; }
 
   // Snapshots [size x (count + 1)] after 1 .. count + 1 steps at dt, starting from the
   // initial state plus epsilon times `direction` (dimensionless, largest entry 1; empty: none).
@@ -708,6 +707,7 @@ class LinearisedRuns {
   double ownDt_ = -1.0;     // s, the dt own_ was settled for
   int steps_ = 0;
   bool afterImpact_ = false;  // the settling stopped where a fallen body came to rest on what it hit
+                              // (never with StepStabilityOptions::at: no settling then)
   Eigen::MatrixXd directions_;  // [size x ...] modalDirections
   std::optional<bool> historyFree_;
   std::vector<Vec3> forceScratch_;  // commonAcceleration's forces
