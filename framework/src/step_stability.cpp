@@ -971,11 +971,60 @@ StepSpectrum radiusOf(LinearisedRuns& runs, double dt, const StepStabilityOption
   return out;
 }
 
+// The radius at dt as the limit sees it. A step that is not smooth at the state: a contact
+// whose response switches exactly there (a mass resting on a projected obstacle: explicit
+// Euler's first step from rest leaves it on the surface, and a perturbation into the obstacle
+// turns the contact's absorption on). Its finite differences measure a jump over the
+// perturbation, not a derivative (the radius grows as dt / perturbation: 388 at 0.1 ms on the
+// ball under the user's sphere), and the growth read from them swallowed every dt
+// ("unlimited"). A smooth step gives the same radius for a perturbation 16 times smaller (to
+// about 1e-3); only a radius past 1 is asked (a stable one decides nothing). Where it is not
+// smooth and a fallen body has come to rest on what it hit (a cloth dropped on a sphere;
+// LinearisedRuns::restsAfterImpact), the modal directions hold the masses its contacts hold
+// one-sidedly (findHeldMasses) and are asked again. Still not smooth, or not such a rest (the
+// thesis cloth's settling stops where its hem has just landed, velocities set to zero: holding
+// its contacts there, or settling it to rest, gave limits 1.3 to 4 times off its runs' either
+// way): not smooth, no linearised radius there.
+struct SmoothRadius {
+  StepSpectrum spectrum;
+  bool smooth = true;
+  int evaluations = 0;  // radii computed
+};
+SmoothRadius smoothRadiusOf(LinearisedRuns& runs, double dt, const StepStabilityOptions& o) {
+  SmoothRadius out;
+  const int before = runs.steps();
+  out.spectrum = radiusOf(runs, dt, o);
+  out.evaluations = 1;
+  auto smooth = [&](double coarse) {
+    runs.scalePerturbation(1.0 / 16.0);
+    const double fine = radiusOf(runs, dt, o).radius;
+    runs.scalePerturbation(16.0);
+    ++out.evaluations;
+    return std::abs(fine - coarse) <= 1e-3 * coarse;
+  };
+  double& r = out.spectrum.radius;
+  if (std::isfinite(r) && r > 1.0 + o.radiusSlack && !smooth(r)) {
+    const bool dense = runs.size() <= o.denseBelow;
+    if (o.holdRestingContacts && !dense && runs.restsAfterImpact() && runs.held.empty() &&
+        runs.findHeldMasses(dt) > 0) {
+      r = radiusOf(runs, dt, o).radius;
+      ++out.evaluations;
+    }
+    out.smooth = !dense && !runs.held.empty() && std::isfinite(r) && (r <= 1.0 + o.radiusSlack || smooth(r));
+  }
+  out.spectrum.steps = runs.steps() - before;
+  return out;
+}
+
 }  // namespace
 
 StepSpectrum stepSpectralRadius(Simulation& sim, double dt, const StepStabilityOptions& options) {
   LinearisedRuns runs(sim, options);
-  return radiusOf(runs, dt, options);
+  if (!options.holdRestingContacts) return radiusOf(runs, dt, options);
+  // The limit's own linearisation: a fallen body's resting contacts held, NaN where not smooth.
+  SmoothRadius r = smoothRadiusOf(runs, dt, options);
+  if (!r.smooth) r.spectrum.radius = NAN;
+  return r.spectrum;
 }
 
 StepGrowth stepPerturbationGrowth(Simulation& sim, double dt, long steps, const StepStabilityOptions& o,
@@ -1034,45 +1083,20 @@ StepStabilityLimit stepStabilityLimit(Simulation& sim, double firstGuess, const 
   // undamped spring read as g = 0.015 /s, whose allowance 2 g dt hid its growth up to a
   // "limit" of 0.6 ms where it has none.
   const double h = firstGuess / 32.0;
+  // A step that is not smooth at the state (smoothRadiusOf): the limit is not computable
+  // there, NaN; where a fallen body rests on what it hit, its contacts are held first.
+  const SmoothRadius atH = smoothRadiusOf(runs, h, o);
+  out.evaluations += atH.evaluations;
+  const double rh = atH.spectrum.radius;
+  double growth = 0.0;
+  if (!atH.smooth) {
+    out.dt = NAN;
+    out.steps = runs.steps();
+    return out;
+  }
   // A radius at h within the slack leaves no growth to measure (g h at most the slack): the
   // second probe is skipped (a radius of the 64 x 64 cloth costs 0.04-0.07 s).
-  double rh = radiusOf(runs, h, o).radius;
-  ++out.evaluations;
-  double growth = 0.0;
-  // A step that is not smooth at the state: a contact whose response switches exactly there
-  // (a mass resting on a projected obstacle: explicit Euler's first step from rest leaves it
-  // on the surface, and a perturbation into the obstacle turns the contact's absorption on).
-  // Its finite differences measure a jump over the perturbation, not a derivative (the radius
-  // grows as dt / perturbation: 388 at 0.1 ms on the ball under the user's sphere), and the
-  // growth read from them swallowed every dt ("unlimited"). A smooth step gives the same
-  // radius for a perturbation 16 times smaller (to about 1e-6); where it does not, the limit
-  // is not computable there: NaN.
-  auto smooth = [&](double coarse) {
-    runs.scalePerturbation(1.0 / 16.0);
-    const double fine = radiusOf(runs, h, o).radius;
-    runs.scalePerturbation(16.0);
-    ++out.evaluations;
-    return std::abs(fine - coarse) <= 1e-3 * coarse;
-  };
   if (std::isfinite(rh) && rh > 1.0 + o.radiusSlack) {
-    // Not smooth where a fallen body has come to rest on what it hit (a cloth dropped on a
-    // sphere; LinearisedRuns::restsAfterImpact): the modal directions hold the masses their
-    // contacts hold one-sidedly (findHeldMasses) and are asked again. Still not smooth, or not
-    // such a rest (the thesis cloth's settling stops where its hem has just landed, velocities
-    // set to zero: holding its contacts there, or settling it to rest, gave limits 1.3 to 4
-    // times off its runs' either way), the limit is not computable there: NaN.
-    if (!smooth(rh)) {
-      const bool dense = runs.size() <= o.denseBelow;
-      if (!dense && runs.restsAfterImpact() && runs.held.empty() && runs.findHeldMasses(h) > 0) {
-        rh = radiusOf(runs, h, o).radius;
-        ++out.evaluations;
-      }
-      if (dense || runs.held.empty() || !std::isfinite(rh) || (rh > 1.0 + o.radiusSlack && !smooth(rh))) {
-        out.dt = NAN;
-        out.steps = runs.steps();
-        return out;
-      }
-    }
     const double rh2 = radiusOf(runs, 0.5 * h, o).radius;
     ++out.evaluations;
     if (std::isfinite(rh2)) growth = std::max(0.0, (4.0 * (rh2 - 1.0) - (rh - 1.0)) / h);

@@ -66,6 +66,11 @@ struct StepStabilityOptions {
   double largestFactor = 1000.0; // stable up to this times the first guess: unbounded
   double smallestFactor = 1e-4;  // unstable down to this times the first guess: no stable dt
   bool settle = true;            // linearise at the settled state (false: at the initial state)
+  // Where the step is not smooth at a fallen body's rest (a mass resting on a projected
+  // collider), hold the masses its contacts hold one-sidedly, as the limit does (false: the
+  // limit is NaN there, and stepSpectralRadius gives the finite differences as they come, a
+  // jump included).
+  bool holdRestingContacts = true;
   // Linearise at this state instead (positions, velocities and time as given; the blow-up
   // message's: where the run was when it was stopped, a squash stiffer than the rest). The
   // step is then linearised about a moving state, and no method's own rest is looked for.
@@ -82,7 +87,9 @@ struct StepStabilityCancelled : std::runtime_error {
   StepStabilityCancelled() : std::runtime_error("the stability limit's computation was cancelled") {}
 };
 
-// The spectral radius of the scene's linearised step at dt, at its settled state.
+// The spectral radius of the scene's linearised step at dt, at its settled state: the
+// linearisation the limit uses (a fallen body's resting contacts held where the step is not
+// smooth there), NaN where the step is not smooth and cannot be held (stepStabilityLimit).
 struct StepSpectrum {
   double radius = 0.0;  // largest |eigenvalue| found
   int steps = 0;        // steps of the scene taken to find it
