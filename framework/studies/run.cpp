@@ -96,6 +96,7 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   scaleSprings(sim, spec.stiffnessScale);
   sim.setBlowUpCheck(true);
   sim.setBlowUpExplanation(spec.explainBlowUp);
+  if (spec.knownStepLimit) sim.setKnownStepLimit(*spec.knownStepLimit);
   std::shared_ptr<const StableSwing> swing = spec.swing;
   if (!swing && spec.swingDt > 0.0) {
     const double duration = spec.restTime + spec.dt * static_cast<double>(spec.stepsPerSample) * spec.samples;

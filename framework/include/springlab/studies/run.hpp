@@ -59,6 +59,11 @@ struct RunSpec {
   // A blow-up's message names the likely cause from the step's exact limit (seconds per
   // blow-up on an 80-mass rope); a chart's trials turn it off, they keep only the verdict.
   bool explainBlowUp = true;
+  // The scene's step limit (stepStableDt at stiffnessScale), already computed: the detectors that
+  // count only past it (BlowUpCheck::beyondLimit) read it instead of computing it again (a
+  // bisection's trials share one: the 80-mass rope's costs 3 s, and each trial paid it). Unset:
+  // computed where a detector first asks.
+  std::optional<double> knownStepLimit = std::nullopt;
 };
 
 struct RunResult {
