@@ -26,7 +26,7 @@ constexpr double kTwinOffset = 1e-6;  // the relative dt of a stable trial's twi
 // What a series of trials (one bisection, one row of the map) holds its runs to, measured at
 // swingDt (half the stability limit; 0: none) when a trial first needs it: the stable run's
 // swing over the trials' duration (and the rest before it), and whether the scene rests there,
-// which holds a trial past the limit to the rest check.
+// which holds a trial past the limit to the rest check; and the step limit its detectors read.
 class HalfLimitRuns {
  public:
   HalfLimitRuns(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
@@ -44,12 +44,6 @@ class HalfLimitRuns {
     return swing_;
   }
 
-  // Whether a trial at dt is held to the rest check: only past the step's limit (twice the
-  // swing's dt), as detectors 5 and 6, and where the scene rests at half the limit. Below the
-  // limit it was tried when the settling stopped a falling body in the air: the ball dropped on
-  // its floor, settled in the air (1.78 ms under symplectic Euler), rests on the floor, and held
-  // to that rest the chart measured 0.84 times the prediction. The settling now follows a fall
-  // to its rest (1.47 ms); the check below the limit has not been tried again.
   // The scene's step limit, computed once for every trial (RunSpec::knownStepLimit): NaN where
   // it cannot be computed, as the blow-up check itself says then.
   double stepLimit() {
@@ -63,6 +57,12 @@ class HalfLimitRuns {
     return limit_;
   }
 
+  // Whether a trial at dt is held to the rest check: only past the step's limit (twice the
+  // swing's dt), as detectors 5 and 6, and where the scene rests at half the limit. Below the
+  // limit it was tried when the settling stopped a falling body in the air: the ball dropped on
+  // its floor, settled in the air (1.78 ms under symplectic Euler), rests on the floor, and held
+  // to that rest the chart measured 0.84 times the prediction. The settling now follows a fall
+  // to its rest (1.47 ms); the check below the limit has not been tried again.
   bool restCheckApplies(double dt) {
     if (!(swingDt_ > 0.0) || dt <= 2.0 * swingDt_) return false;
     std::call_once(restOnce_, [&] {
