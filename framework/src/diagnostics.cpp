@@ -51,6 +51,9 @@ void BlowUpCheck::arm(const Simulation& sim) {
   restartClimb(totalCeiling_);
   last_ = sim.state;
   lastStep_ = sim.stats.steps;
+  armedStep_ = sim.stats.steps;
+  armedBalance_ = passiveCeiling_;
+  armedCorrections_ = sim.correctionWork();
 }
 
 double StepReversal::record(const std::vector<Vec3>& velocities) {
@@ -304,6 +307,52 @@ double limitAt(Simulation& sim, const State& at) {
   return limitLeavingTheState(sim, o);
 }
 
+// The smallest limit along a calm run: the scene run again from its start at half of dt, its
+// check off, up to `until`, linearised at `samples` evenly spaced times (NaN where no state was
+// smooth), leaving the run as it found it. The state where a run was stopped may be the
+// blow-up's own: the trampoline in the wind under explicit Euler at 0.8 times its limit
+// linearises to 0.094 ms there, while its calm run's states do to 0.23 ms and more (the
+// tethers' catch at t = 0.049 s; 0.32 ms at rest); the slope's landing under the midpoint rule
+// dips to 1.86 ms on its calm run, where the rest gives 2.02 ms.
+struct CalmRunLimit {
+  double limit = NAN;  // s
+  double time = NAN;   // s, where it was smallest
+};
+CalmRunLimit limitAlongCalmRun(Simulation& sim, double dt, double until, int samples) {
+  const Simulation::SavedRun run = sim.saveRun();
+  const bool checking = sim.blowUpCheckEnabled();
+  CalmRunLimit out;
+  try {
+    sim.reset();
+    sim.setBlowUpCheck(false);
+    const double calmDt = 0.5 * dt;
+    for (int k = 1; k <= samples; ++k) {
+      const double t = until * k / samples;
+      while (sim.state.time < t - 0.5 * calmDt) sim.operate(calmDt);
+      bool finite = true;
+      for (int i = 0; i < sim.numOfMasses() && finite; ++i) {
+        finite = sim.state.pos[i].allFinite() && sim.state.vel[i].allFinite();
+      }
+      if (!finite) break;
+      // A limit below the calm run's own dt, which the calm run just stepped through, is not
+      // the run's: the linearisation caught a contact or a self-collision switching (the
+      // self-colliding cloth folded at t = 0.24 s under explicit Euler: 0.043 ms, where the
+      // calm run at 0.23 ms goes on).
+      const double limit = limitAt(sim, sim.state);
+      if (limit < calmDt) continue;
+      if (limit < out.limit || (std::isnan(out.limit) && !std::isnan(limit))) {
+        out.limit = limit;
+        out.time = sim.state.time;
+      }
+    }
+  } catch (const std::exception&) {
+    // A calm run that cannot go on says what it measured so far.
+  }
+  sim.setBlowUpCheck(checking);
+  sim.resumeRun(run);
+  return out;
+}
+
 }  // namespace
 
 bool BlowUpCheck::beyondLimitOrMeasured(Simulation& sim, double dt) {
@@ -554,19 +603,47 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
   } else {
     // Below the limit where the scene settles, the run may still have passed through a state
     // stiffer than its rest (the dropped ball's squash on the floor, whose contact damper
-    // lowers symplectic Euler's limit from 1.78 to 1.43 ms): the limit where it was stopped
-    // says whether dt was the cause there. Not computed where the first limit came from
-    // elsewhere (the viewer's worker): it would hold the caller's thread (seconds on the
-    // 80-mass rope).
+    // lowers symplectic Euler's limit from 1.78 to 1.43 ms). The limit where it was stopped
+    // says whether dt was the cause there, but that state may be the blow-up's own (the
+    // trampoline in the wind under explicit Euler at 0.8 times its limit: 0.094 ms there), so
+    // where it is past dt or not smooth, a run from the scene's start at half dt tells (when
+    // this run is that run and replaying it costs at most kCalmWork). Neither is computed where
+    // the first limit came from elsewhere (the viewer's worker): it would hold the caller's
+    // thread (seconds on the 80-mass rope).
     const State& stopped = finiteState ? sim.state : last_;
     const bool computable = !sim.knownStepLimit() && stopped.pos.size() == sim.masses.size();
     const double here = computable ? limitAt(sim, stopped) : NAN;
+    const double replayWork = 2.0 * static_cast<double>(sim.stats.steps) * sim.numOfMasses();
+    const CalmRunLimit calm = computable && !(dt <= here) && armedStep_ == 0 && replayWork <= kCalmWork
+                                  ? limitAlongCalmRun(sim, dt, stopped.time, kCalmSamples)
+                                  : CalmRunLimit{};
     msg << "dt = " << dt << " s is below the stability limit of " << name << " on this scene linearised where it settles ("
         << limit << " s)";
-    if (std::isfinite(here) && dt > here) {
-      msg << ", but not below its limit where the run was stopped (t = " << stopped.time << " s: " << here
-          << " s). Likely cause: dt, in a state stiffer than the rest (a contact, a squash, a stretched "
-          << "configuration): try a dt below " << here << " s.";
+    if (std::isfinite(calm.limit) && dt <= kCalmMargin * calm.limit) {
+      // What put the energy in, for the user to look at: the step's own or the corrections'.
+      msg << " and " << kCalmMargin << " times its limit at every state of a run from the start at half this dt ("
+          << kCalmSamples << " of them; the smallest limit " << calm.limit << " s, at t = " << calm.time
+          << " s); where this run was stopped (t = " << stopped.time << " s) ";
+      if (std::isfinite(here)) {
+        msg << "the state is the blow-up's own (its limit " << here << " s).";
+      } else {
+        msg << "its step is not smooth.";
+      }
+      msg << " So the step is not the likely cause: look for a force that grows without bound, a contact or a "
+          << "constraint that adds energy (since the start the corrections after each step put in "
+          << sim.correctionWork() - armedCorrections_ << " J, and the step's own energy changed by "
+          << sim.energyBalance() - armedBalance_ << " J).";
+    } else if (std::isfinite(calm.limit) || (std::isfinite(here) && dt > here)) {
+      const bool calmSays = std::isfinite(calm.limit);
+      msg << ", but not below ";
+      if (calmSays) {
+        msg << kCalmMargin << " times its limit in a state a run from the start at half this dt passes through (t = "
+            << calm.time << " s: " << calm.limit << " s)";
+      } else {
+        msg << "its limit where the run was stopped (t = " << stopped.time << " s: " << here << " s)";
+      }
+      msg << ". Likely cause: dt, in a state stiffer than the rest (a contact, a squash, a stretched "
+          << "configuration): try a dt below " << (calmSays ? kCalmMargin * calm.limit : here) << " s.";
     } else {
       if (std::isfinite(here)) msg << " and where the run was stopped (t = " << stopped.time << " s: " << here << " s)";
       if (!computable) msg << " (its limit where the run was stopped is not computed here: `springlab sim` with this dt names it)";
