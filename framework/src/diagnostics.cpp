@@ -307,25 +307,50 @@ double limitAt(Simulation& sim, const State& at) {
   return limitLeavingTheState(sim, o);
 }
 
-// The smallest limit along a calm run: the scene run again from its start at half of dt, its
-// check off, up to `until`, linearised at `samples` evenly spaced times (NaN where no state was
-// smooth), leaving the run as it found it. The state where a run was stopped may be the
-// blow-up's own: the trampoline in the wind under explicit Euler at 0.8 times its limit
-// linearises to 0.094 ms there, while its calm run's states do to 0.23 ms and more (the
-// tethers' catch at t = 0.049 s; 0.32 ms at rest); the slope's landing under the midpoint rule
-// dips to 1.86 ms on its calm run, where the rest gives 2.02 ms.
-struct CalmRunLimit {
-  double limit = NAN;  // s
-  double time = NAN;   // s, where it was smallest
+// The step's spectral radius at dt linearised at `at`, leaving the run as it found it (as
+// limitLeavingTheState); NaN when it cannot be computed or the step is not smooth there.
+double radiusAt(Simulation& sim, const State& at, double dt) {
+  const Simulation::SavedRun run = sim.saveRun();
+  double radius = NAN;
+  try {
+    StepStabilityOptions o;
+    o.at = at;
+    radius = stepSpectralRadius(sim, dt, o).radius;
+  } catch (const std::exception&) {
+    radius = NAN;
+  }
+  sim.resumeRun(run);
+  return radius;
+}
+
+// What a calm run says of dt: the scene run again from its start at half of dt, its check
+// off, up to `until`, and its step at dt / margin linearised at `samples` evenly spaced times
+// (a spectral radius each, a tenth or less of a limit's cost: on the 80-mass rope a limit takes
+// seconds). A state whose radius is at most 1 is cleared; at the others (past 1, or not smooth
+// there) the limit is computed, the largest radius first, then the states that are not smooth,
+// for at most `limits` of them. A limit below the calm run's own dt, which the calm run just
+// stepped through, is not the run's (the linearisation caught a contact or a self-collision
+// switching: the self-colliding cloth folded at t = 0.24 s under explicit Euler, 0.043 ms,
+// where the calm run at 0.23 ms goes on). Leaves the run as it found it. The state where a run
+// was stopped may be the blow-up's own: the trampoline in the wind under explicit Euler at 0.8
+// times its limit linearises to 0.094 ms there, and on its calm run to 0.232 ms at t = 0.049 s
+// (the tethers' catch; 0.318 ms at rest); the slope's landing under the midpoint rule to 0.45 ms
+// and 1.86 ms (2.02 ms at rest).
+struct CalmRun {
+  int states = 0;      // linearised (the calm run's finite states)
+  int cleared = 0;     // of them, where dt is within margin times the limit
+  double limit = NAN;  // s, the smallest limit found past dt / margin; NaN: none
+  double time = NAN;   // s, that state's time
 };
-CalmRunLimit limitAlongCalmRun(Simulation& sim, double dt, double until, int samples) {
+CalmRun calmRun(Simulation& sim, double dt, double margin, double until, int samples, int limits) {
   const Simulation::SavedRun run = sim.saveRun();
   const bool checking = sim.blowUpCheckEnabled();
-  CalmRunLimit out;
+  CalmRun out;
+  std::vector<std::pair<double, State>> suspects;  // (radius, NaN where not smooth; state)
+  const double calmDt = 0.5 * dt;
   try {
     sim.reset();
     sim.setBlowUpCheck(false);
-    const double calmDt = 0.5 * dt;
     for (int k = 1; k <= samples; ++k) {
       const double t = until * k / samples;
       while (sim.state.time < t - 0.5 * calmDt) sim.operate(calmDt);
@@ -334,19 +359,31 @@ CalmRunLimit limitAlongCalmRun(Simulation& sim, double dt, double until, int sam
         finite = sim.state.pos[i].allFinite() && sim.state.vel[i].allFinite();
       }
       if (!finite) break;
-      // A limit below the calm run's own dt, which the calm run just stepped through, is not
-      // the run's: the linearisation caught a contact or a self-collision switching (the
-      // self-colliding cloth folded at t = 0.24 s under explicit Euler: 0.043 ms, where the
-      // calm run at 0.23 ms goes on).
-      const double limit = limitAt(sim, sim.state);
-      if (limit < calmDt) continue;
-      if (limit < out.limit || (std::isnan(out.limit) && !std::isnan(limit))) {
+      ++out.states;
+      const double radius = radiusAt(sim, sim.state, dt / margin);
+      if (radius <= 1.0) {
+        ++out.cleared;
+      } else {
+        suspects.emplace_back(radius, sim.state);
+      }
+    }
+    // The largest radii first, the states that are not smooth (NaN) last, in time.
+    std::stable_sort(suspects.begin(), suspects.end(), [](const auto& a, const auto& b) {
+      return !std::isnan(a.first) && (std::isnan(b.first) || a.first > b.first);
+    });
+    for (std::size_t j = 0; j < suspects.size() && static_cast<int>(j) < limits; ++j) {
+      const State& state = suspects[j].second;
+      const double limit = limitAt(sim, state);
+      if (!(std::isfinite(limit) && limit >= calmDt)) continue;
+      if (limit * margin >= dt) {
+        ++out.cleared;
+      } else if (!(limit >= out.limit)) {
         out.limit = limit;
-        out.time = sim.state.time;
+        out.time = state.time;
       }
     }
   } catch (const std::exception&) {
-    // A calm run that cannot go on says what it measured so far.
+    // A calm run that cannot go on says what it found so far.
   }
   sim.setBlowUpCheck(checking);
   sim.resumeRun(run);
@@ -614,16 +651,20 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     const bool computable = !sim.knownStepLimit() && stopped.pos.size() == sim.masses.size();
     const double here = computable ? limitAt(sim, stopped) : NAN;
     const double replayWork = 2.0 * static_cast<double>(sim.stats.steps) * sim.numOfMasses();
-    const CalmRunLimit calm = computable && !(dt <= here) && armedStep_ == 0 && replayWork <= kCalmWork
-                                  ? limitAlongCalmRun(sim, dt, stopped.time, kCalmSamples)
-                                  : CalmRunLimit{};
+    const CalmRun calm = computable && !(dt <= here) && armedStep_ == 0 && replayWork <= kCalmWork
+                             ? calmRun(sim, dt, kCalmMargin, stopped.time, kCalmSamples, kCalmLimits)
+                             : CalmRun{};
     msg << "dt = " << dt << " s is below the stability limit of " << name << " on this scene linearised where it settles ("
         << limit << " s)";
-    if (std::isfinite(calm.limit) && dt <= kCalmMargin * calm.limit) {
+    if (std::isfinite(calm.limit)) {
+      msg << ", but not below " << kCalmMargin << " times its limit in a state a run from the start at half this dt "
+          << "passes through (t = " << calm.time << " s: " << calm.limit << " s). Likely cause: dt, in a state "
+          << "stiffer than the rest (a contact, a squash, a stretched configuration): try a dt below "
+          << kCalmMargin * calm.limit << " s.";
+    } else if (calm.states > 0 && calm.cleared == calm.states) {
       // What put the energy in, for the user to look at: the step's own or the corrections'.
       msg << " and " << kCalmMargin << " times its limit at every state of a run from the start at half this dt ("
-          << kCalmSamples << " of them; the smallest limit " << calm.limit << " s, at t = " << calm.time
-          << " s); where this run was stopped (t = " << stopped.time << " s) ";
+          << calm.states << " linearised); where this run was stopped (t = " << stopped.time << " s) ";
       if (std::isfinite(here)) {
         msg << "the state is the blow-up's own (its limit " << here << " s).";
       } else {
@@ -633,17 +674,10 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
           << "constraint that adds energy (since the start the corrections after each step put in "
           << sim.correctionWork() - armedCorrections_ << " J, and the step's own energy changed by "
           << sim.energyBalance() - armedBalance_ << " J).";
-    } else if (std::isfinite(calm.limit) || (std::isfinite(here) && dt > here)) {
-      const bool calmSays = std::isfinite(calm.limit);
-      msg << ", but not below ";
-      if (calmSays) {
-        msg << kCalmMargin << " times its limit in a state a run from the start at half this dt passes through (t = "
-            << calm.time << " s: " << calm.limit << " s)";
-      } else {
-        msg << "its limit where the run was stopped (t = " << stopped.time << " s: " << here << " s)";
-      }
-      msg << ". Likely cause: dt, in a state stiffer than the rest (a contact, a squash, a stretched "
-          << "configuration): try a dt below " << (calmSays ? kCalmMargin * calm.limit : here) << " s.";
+    } else if (std::isfinite(here) && dt > here) {
+      msg << ", but not below its limit where the run was stopped (t = " << stopped.time << " s: " << here
+          << " s). Likely cause: dt, in a state stiffer than the rest (a contact, a squash, a stretched "
+          << "configuration): try a dt below " << here << " s.";
     } else {
       if (std::isfinite(here)) msg << " and where the run was stopped (t = " << stopped.time << " s: " << here << " s)";
       if (!computable) msg << " (its limit where the run was stopped is not computed here: `springlab sim` with this dt names it)";

@@ -123,6 +123,9 @@ class BlowUpCheck {
   // was stopped).
   static constexpr int kCalmSamples = 32;
   static constexpr double kCalmWork = 2e7;
+  // Of those times, the limit itself is computed at most at this many (a radius past 1, or a
+  // step that is not smooth there); the others are cleared by one spectral radius each.
+  static constexpr int kCalmLimits = 8;
   // A run at dt passes near the calm run's states, not through them: dt counts as past a
   // state's limit from this fraction of it (the self-colliding cloth under the midpoint rule
   // blows up at 0.99 times the 0.4725 ms its calm run linearises to after the landing, and
