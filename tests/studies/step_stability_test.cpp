@@ -770,6 +770,24 @@ TEST(FabricLimit, IsFarBelow2OverWmaxWhenTheStiffestModesAreOverdamped) {
 }
 
 // ---- the rest and the landing -----------------------------------------------------------------
+// The smallest limit of `integrator` linearised at states of its own run from the scene's start
+// at runDt (StepStabilityOptions::at): at t = from, from + every, ..., from + count x every.
+double smallestLimitAlongRun(const SceneDocument& scene, const std::string& integrator, double runDt, double from,
+                             double every, int count) {
+  LoadedScene run = allLabs().loadScene(scene);
+  run.sim->setIntegrator(allLabs().makeIntegrator(integrator));
+  double smallest = INFINITY;
+  for (int k = 0; k <= count; ++k) {
+    while (run.sim->state.time < from + every * k - 1e-9) run.sim->operate(runDt);
+    LoadedScene probe = allLabs().loadScene(scene);
+    probe.sim->setIntegrator(allLabs().makeIntegrator(integrator));
+    StepStabilityOptions o;
+    o.at = run.sim->state;
+    smallest = std::min(smallest, stepStableDt(*probe.sim, o));
+  }
+  return smallest;
+}
+
 // The prediction is a claim about the scene's rest: the step linearised where it settles. A run
 // from the scene's start may pass through a stiffer state first. The cloth dropped on the sphere
 // and the slope in a weak wind, under the midpoint rule: from its start, 0.97 times the limit
@@ -803,17 +821,7 @@ TEST(LandingCloth, MidpointRuleHoldsItsLimitFromRestAndFailsEarlierInTheLanding)
   const std::string landing = run(0.0, 0.97, 3.0);
   EXPECT_NE(landing.find("in a state stiffer than the rest"), std::string::npos) << landing;
   // The landing of a calm run (0.5 ms, a quarter of the limit), linearised every 10 ms.
-  LoadedScene calm = allLabs().loadScene(slope);
-  calm.sim->setIntegrator(allLabs().makeIntegrator("midpoint"));
-  double stiffest = INFINITY;
-  for (int k = 0; k <= 10; ++k) {
-    while (calm.sim->state.time < 0.30 + 0.01 * k - 1e-9) calm.sim->operate(5e-4);
-    LoadedScene probe = allLabs().loadScene(slope);
-    probe.sim->setIntegrator(allLabs().makeIntegrator("midpoint"));
-    StepStabilityOptions o;
-    o.at = calm.sim->state;
-    stiffest = std::min(stiffest, stepStableDt(*probe.sim, o));
-  }
+  const double stiffest = smallestLimitAlongRun(slope, "midpoint", 5e-4, 0.30, 0.01, 10);
   EXPECT_LT(stiffest, 0.97 * predicted) << "the landing's limit, against " << predicted << " s at rest";
 }
 
@@ -848,17 +856,7 @@ TEST(TrampolineInTheWind, ExplicitEulerFailsBelowItsRestLimitWhereTheStretchLimi
   const double rest = studies::sceneStepStableDt(allLabs(), trampoline, "explicit_euler");
   ASSERT_TRUE(std::isfinite(rest) && rest > 0.0) << rest;
   // The catch: a fine run linearised every 2 ms from 40 to 60 ms.
-  LoadedScene fine = allLabs().loadScene(trampoline);
-  fine.sim->setIntegrator(allLabs().makeIntegrator("explicit_euler"));
-  double caught = INFINITY;
-  for (int k = 0; k <= 10; ++k) {
-    while (fine.sim->state.time < 0.040 + 0.002 * k - 1e-9) fine.sim->operate(2e-5);
-    LoadedScene probe = allLabs().loadScene(trampoline);
-    probe.sim->setIntegrator(allLabs().makeIntegrator("explicit_euler"));
-    StepStabilityOptions o;
-    o.at = fine.sim->state;
-    caught = std::min(caught, stepStableDt(*probe.sim, o));
-  }
+  const double caught = smallestLimitAlongRun(trampoline, "explicit_euler", 2e-5, 0.040, 0.002, 10);
   EXPECT_LT(caught, 0.8 * rest) << "the catch's limit, against " << rest << " s at rest";
   // The blow-up's message, or empty when the run lasts 0.3 s from the start.
   auto run = [&](const SceneDocument& scene, double dt) -> std::string {
