@@ -277,20 +277,34 @@ bool anchorsMoved(const Simulation& sim, const State& last) {
   return false;
 }
 
-// The exact stability limit of the step that runs (stepStableDt with `options`), leaving the
-// run as it found it (Simulation::saveRun: the state, the lab's data, this check's watch);
-// NaN when it cannot be computed. Called from inside check(): resumeRun puts this very
-// check's members back too.
-double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options) {
+// The first mass whose position or velocity is not finite, or -1.
+int firstNonFiniteMass(const State& s) {
+  for (std::size_t i = 0; i < s.pos.size(); ++i) {
+    if (!s.pos[i].allFinite() || !s.vel[i].allFinite()) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// compute() (a stability computation that resets and steps the scene), leaving the run as it
+// found it (Simulation::saveRun: the state, the lab's data, this check's watch); NaN when it
+// throws. Called from inside check(): resumeRun puts this very check's members back too.
+template <class Compute>
+double leavingTheRun(Simulation& sim, Compute compute) {
   const Simulation::SavedRun run = sim.saveRun();
-  double limit = NAN;
+  double value = NAN;
   try {
-    limit = stepStableDt(sim, options);
+    value = compute();
   } catch (const std::exception&) {
-    limit = NAN;
+    value = NAN;
   }
   sim.resumeRun(run);
-  return limit;
+  return value;
+}
+
+// The exact stability limit of the step that runs (stepStableDt with `options`), leaving the
+// run as it found it; NaN when it cannot be computed.
+double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options) {
+  return leavingTheRun(sim, [&] { return stepStableDt(sim, options); });
 }
 
 // Where the scene settles. One already computed (the viewer's, on a copy of the scene) is
@@ -307,20 +321,12 @@ double limitAt(Simulation& sim, const State& at) {
   return limitLeavingTheState(sim, o);
 }
 
-// The step's spectral radius at dt linearised at `at`, leaving the run as it found it (as
-// limitLeavingTheState); NaN when it cannot be computed or the step is not smooth there.
+// The step's spectral radius at dt linearised at `at`, leaving the run as it found it; NaN when
+// it cannot be computed or the step is not smooth there.
 double radiusAt(Simulation& sim, const State& at, double dt) {
-  const Simulation::SavedRun run = sim.saveRun();
-  double radius = NAN;
-  try {
-    StepStabilityOptions o;
-    o.at = at;
-    radius = stepSpectralRadius(sim, dt, o).radius;
-  } catch (const std::exception&) {
-    radius = NAN;
-  }
-  sim.resumeRun(run);
-  return radius;
+  StepStabilityOptions o;
+  o.at = at;
+  return leavingTheRun(sim, [&] { return stepSpectralRadius(sim, dt, o).radius; });
 }
 
 // What a calm run says of dt: the scene run again from its start at half of dt, its check
@@ -354,11 +360,7 @@ CalmRun calmRun(Simulation& sim, double dt, double margin, double until, int sam
     for (int k = 1; k <= samples; ++k) {
       const double t = until * k / samples;
       while (sim.state.time < t - 0.5 * calmDt) sim.operate(calmDt);
-      bool finite = true;
-      for (int i = 0; i < sim.numOfMasses() && finite; ++i) {
-        finite = sim.state.pos[i].allFinite() && sim.state.vel[i].allFinite();
-      }
-      if (!finite) break;
+      if (firstNonFiniteMass(sim.state) >= 0) break;
       ++out.states;
       const double radius = radiusAt(sim, sim.state, dt / margin);
       if (radius <= 1.0) {
@@ -411,10 +413,8 @@ bool BlowUpCheck::beyondLimit(Simulation& sim, double dt) {
 void BlowUpCheck::check(Simulation& sim, double dt) {
   // Detector 1, a non-finite state: name the first mass that went bad.
   std::string why;
-  for (int i = 0; i < sim.numOfMasses() && why.empty(); ++i) {
-    if (!sim.state.pos[i].allFinite() || !sim.state.vel[i].allFinite()) {
-      why = "mass " + std::to_string(i) + " has a non-finite position or velocity";
-    }
+  if (const int bad = firstNonFiniteMass(sim.state); bad >= 0) {
+    why = "mass " + std::to_string(bad) + " has a non-finite position or velocity";
   }
   bool finiteState = why.empty();
   // Detector 2, runaway energy: kinetic plus potential energy (springs and the lab's own:

@@ -193,7 +193,7 @@ class BlowUpCheck {
   // then says nothing about the scene's stiffness) and compares dt with it; when dt is below
   // it, also the limit linearised where the run was stopped (a squash, a contact the rest does
   // not have), which may still be below dt, and where it is (or that step is not smooth) the
-  // smallest along a calm run from the start at half dt (kCalmSamples). Computing the
+  // stiffest state a calm run from the start at half dt passes through (kCalmSamples). Computing the
   // limit resets the lab's own data (a dragged collider returns); the state and the counters
   // are put back as the blow-up left them. Remembers the state as the last finite one when
   // it passes.
