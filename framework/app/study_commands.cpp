@@ -77,6 +77,7 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
   so.duration = o.time;
   so.threads = o.threads;
   so.fromRest = o.fromRest;
+  so.stiffestOnTheWay = true;
   const studies::Stability study = studies::stability(registry, doc, so);
   const std::string folder = outputFolder(o);
   studies::writeCsv(study, folder + "/stability.csv");
@@ -87,7 +88,8 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
             << study.gershgorinBound << " rad/s; each trial runs at least " << study.duration
             << " s (longer where an instability just past the predicted limit grows slowly)\n";
   std::cout << std::left << std::setw(22) << "integrator" << std::setw(16) << "c / w_max" << std::setw(16)
-            << "predicted dt" << std::setw(16) << "measured dt" << "measured/predicted\n";
+            << "predicted dt" << std::setw(16) << "measured dt" << std::setw(20) << "measured/predicted"
+            << "stiffest state before the trials failed\n";
   for (const studies::CriticalDt& m : study.methods) {
     // predicted: the exact limit of the step (stepStableDt); "none": no stable dt;
     // "unlimited": stable at every dt tried; "not smooth": a contact switches where the scene
@@ -103,7 +105,17 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
     if (std::isnan(m.measured)) measured << "not tried"; else measured << m.measured;
     std::cout << std::setw(22) << m.integrator << std::setw(16) << undamped << std::setw(16) << predicted
               << std::setw(16) << measured.str()
-              << (finite && !std::isnan(m.measured) ? std::to_string(m.measured / m.predicted) : "-") << "\n";
+              << std::setw(20) << (finite && !std::isnan(m.measured) ? std::to_string(m.measured / m.predicted) : "-");
+    // Where a state the trials passed through before they failed is stiffer than the rest (the
+    // trampoline's catch): its limit and time, and measured against it. A frozen state's limit:
+    // a contact or the stretch limit may cap what it grows (the slope's friction).
+    if (std::isfinite(m.stiffestOnTheWayAt) && !std::isnan(m.measured)) {
+      std::cout << m.stiffestOnTheWay << " s at t = " << m.stiffestOnTheWayAt << " s (measured/that "
+                << m.measured / m.stiffestOnTheWay << ")";
+    } else {
+      std::cout << (std::isfinite(m.stiffestOnTheWay) ? "the rest's" : "-");
+    }
+    std::cout << "\n";
   }
 
   nlohmann::json facts = sceneFacts(doc, o);

@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 
+#include "springlab/calm_run.hpp"
 #include "springlab/simulation.hpp"
 #include "springlab/step_stability.hpp"
 
@@ -277,119 +278,11 @@ bool anchorsMoved(const Simulation& sim, const State& last) {
   return false;
 }
 
-// The first mass whose position or velocity is not finite, or -1.
-int firstNonFiniteMass(const State& s) {
-  for (std::size_t i = 0; i < s.pos.size(); ++i) {
-    if (!s.pos[i].allFinite() || !s.vel[i].allFinite()) return static_cast<int>(i);
-  }
-  return -1;
-}
-
-// compute() (a stability computation that resets and steps the scene), leaving the run as it
-// found it (Simulation::saveRun: the state, the lab's data, this check's watch); NaN when it
-// throws. Called from inside check(): resumeRun puts this very check's members back too.
-template <class Compute>
-double leavingTheRun(Simulation& sim, Compute compute) {
-  const Simulation::SavedRun run = sim.saveRun();
-  double value = NAN;
-  try {
-    value = compute();
-  } catch (const std::exception&) {
-    value = NAN;
-  }
-  sim.resumeRun(run);
-  return value;
-}
-
-// The exact stability limit of the step that runs (stepStableDt with `options`), leaving the
-// run as it found it; NaN when it cannot be computed.
-double limitLeavingTheState(Simulation& sim, const StepStabilityOptions& options) {
-  return leavingTheRun(sim, [&] { return stepStableDt(sim, options); });
-}
-
 // Where the scene settles. One already computed (the viewer's, on a copy of the scene) is
 // taken as it is.
 double exactLimit(Simulation& sim) {
   if (const std::optional<double> known = sim.knownStepLimit()) return *known;
-  return limitLeavingTheState(sim, {});
-}
-
-// Linearised at `at`, a state the run passed through (moving).
-double limitAt(Simulation& sim, const State& at) {
-  StepStabilityOptions o;
-  o.at = at;
-  return limitLeavingTheState(sim, o);
-}
-
-// The step's spectral radius at dt linearised at `at`, leaving the run as it found it; NaN when
-// it cannot be computed or the step is not smooth there.
-double radiusAt(Simulation& sim, const State& at, double dt) {
-  StepStabilityOptions o;
-  o.at = at;
-  return leavingTheRun(sim, [&] { return stepSpectralRadius(sim, dt, o).radius; });
-}
-
-// What a calm run says of dt: the scene run again from its start at half of dt, its check
-// off, up to `until`, and its step at dt / margin linearised at `samples` evenly spaced times
-// (a spectral radius each, a tenth or less of a limit's cost: on the 80-mass rope a limit takes
-// seconds). A state whose radius is at most 1 is cleared; at the others (past 1, or not smooth
-// there) the limit is computed, the largest radius first, then the states that are not smooth,
-// for at most `limits` of them. A limit below the calm run's own dt, which the calm run just
-// stepped through, is not the run's (the linearisation caught a contact or a self-collision
-// switching: the self-colliding cloth folded at t = 0.24 s under explicit Euler, 0.043 ms,
-// where the calm run at 0.23 ms goes on). Leaves the run as it found it. The state where a run
-// was stopped may be the blow-up's own: the trampoline in the wind under explicit Euler at 0.8
-// times its limit linearises to 0.094 ms there, and on its calm run to 0.232 ms at t = 0.049 s
-// (the tethers' catch; 0.318 ms at rest); the slope's landing under the midpoint rule to 0.45 ms
-// and 1.86 ms (2.02 ms at rest).
-struct CalmRun {
-  int states = 0;      // linearised (the calm run's finite states)
-  int cleared = 0;     // of them, where dt is within margin times the limit
-  double limit = NAN;  // s, the smallest limit found past dt / margin; NaN: none
-  double time = NAN;   // s, that state's time
-};
-CalmRun calmRun(Simulation& sim, double dt, double margin, double until, int samples, int limits) {
-  const Simulation::SavedRun run = sim.saveRun();
-  const bool checking = sim.blowUpCheckEnabled();
-  CalmRun out;
-  std::vector<std::pair<double, State>> suspects;  // (radius, NaN where not smooth; state)
-  const double calmDt = 0.5 * dt;
-  try {
-    sim.reset();
-    sim.setBlowUpCheck(false);
-    for (int k = 1; k <= samples; ++k) {
-      const double t = until * k / samples;
-      while (sim.state.time < t - 0.5 * calmDt) sim.operate(calmDt);
-      if (firstNonFiniteMass(sim.state) >= 0) break;
-      ++out.states;
-      const double radius = radiusAt(sim, sim.state, dt / margin);
-      if (radius <= 1.0) {
-        ++out.cleared;
-      } else {
-        suspects.emplace_back(radius, sim.state);
-      }
-    }
-    // The largest radii first, the states that are not smooth (NaN) last, in time.
-    std::stable_sort(suspects.begin(), suspects.end(), [](const auto& a, const auto& b) {
-      return !std::isnan(a.first) && (std::isnan(b.first) || a.first > b.first);
-    });
-    for (std::size_t j = 0; j < suspects.size() && static_cast<int>(j) < limits; ++j) {
-      const State& state = suspects[j].second;
-      const double limit = limitAt(sim, state);
-      if (!(std::isfinite(limit) && limit >= calmDt)) continue;
-      if (limit * margin >= dt) {
-        ++out.cleared;
-      } else if (!(limit >= out.limit)) {
-        out.limit = limit;
-        out.time = state.time;
-      }
-    }
-  } catch (const std::exception&) {
-    // A calm run that cannot go on says what it found so far.
-  }
-  sim.setBlowUpCheck(checking);
-  sim.resumeRun(run);
-  return out;
+  return limitLeavingTheRun(sim, {});
 }
 
 }  // namespace
@@ -649,10 +542,10 @@ void BlowUpCheck::check(Simulation& sim, double dt) {
     // thread (seconds on the 80-mass rope).
     const State& stopped = finiteState ? sim.state : last_;
     const bool computable = !sim.knownStepLimit() && stopped.pos.size() == sim.masses.size();
-    const double here = computable ? limitAt(sim, stopped) : NAN;
+    const double here = computable ? stepLimitAt(sim, stopped) : NAN;
     const double replayWork = 2.0 * static_cast<double>(sim.stats.steps) * sim.numOfMasses();
     const CalmRun calm = computable && !(dt <= here) && armedStep_ == 0 && replayWork <= kCalmWork
-                             ? calmRun(sim, dt, kCalmMargin, stopped.time, kCalmSamples, kCalmLimits)
+                             ? calmRun(sim, dt, kCalmMargin, 0.0, stopped.time, kCalmSamples, kCalmLimits)
                              : CalmRun{};
     msg << "dt = " << dt << " s is below the stability limit of " << name << " on this scene linearised where it settles ("
         << limit << " s)";

@@ -124,6 +124,7 @@ RunResult runScene(const Registry& registry, const RunSpec& spec) {
   } catch (const BlowUp& e) {
     out.stable = false;
     out.failure = e.what();
+    out.stoppedAt = sim.state.time;
   }
   out.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.steps = sim.stats.steps;

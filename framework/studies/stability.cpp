@@ -4,12 +4,16 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "parallel.hpp"
+#include "springlab/calm_run.hpp"
 #include "springlab/step_stability.hpp"
 #include "springlab/studies/rest_check.hpp"
 
@@ -85,9 +89,11 @@ class HalfLimitRuns {
 
 // Does the scene survive `duration` (and at least kFewestTrialSteps) at dt, and so does its
 // twin at a dt kTwinOffset smaller? (nullopt: too many steps to try)
+// Where a run failed, *stoppedAt is the scene's time it was stopped (NaN: by the rest check).
 std::optional<bool> survives(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                              double dt, double duration, long maxSteps, double stiffnessScale,
-                             HalfLimitRuns& reference, double restTime, double restDt) {
+                             HalfLimitRuns& reference, double restTime, double restDt, double& stoppedAt) {
+  stoppedAt = NAN;
   const long steps = std::max(kFewestTrialSteps, std::lround(std::ceil(duration / dt)));
   if (steps > maxSteps) return std::nullopt;
   RunSpec spec{scene, integrator, dt, steps, 1};
@@ -98,13 +104,19 @@ std::optional<bool> survives(const Registry& registry, const SceneDocument& scen
   spec.knownStepLimit = reference.stepLimit();
   spec.restTime = restTime;
   spec.restDt = restDt;
-  if (!runScene(registry, spec).stable) return false;
+  if (const RunResult r = runScene(registry, spec); !r.stable) {
+    stoppedAt = r.stoppedAt;
+    return false;
+  }
   // A verdict must not hang on round-off: a scene with contacts is chaotic, and past the limit a
   // run may miss its instability by luck (the midpoint rule on the dropped cloth at 1.09 times
   // its limit runs to the end at dt = 0.298335443 ms and fails by passivity at 0.298335 ms). So
   // a run that survives counts only when its twin at a dt one part in a million smaller does.
   spec.dt = dt * (1.0 - kTwinOffset);
-  if (!runScene(registry, spec).stable) return false;
+  if (const RunResult r = runScene(registry, spec); !r.stable) {
+    stoppedAt = r.stoppedAt;
+    return false;
+  }
   // A mode past its limit that something nonlinear caps (a contact, the wind's drag) leaves
   // the run bounded and within the check's allowances (the wind ball under velocity Verlet
   // survived 1.2 times its limit); where the scene rests, its rest must hold at dt too.
@@ -113,6 +125,30 @@ std::optional<bool> survives(const Registry& registry, const SceneDocument& scen
     return false;
   }
   return true;
+}
+
+// The stiffest state on the way to where the trials failed: a calm run at half the predicted
+// limit (the dt trials from the rest run there at first) from the scene's start up to the time
+// the smallest failing trial was stopped, probed at 64 states after `from` (where the trials
+// switch to their dt; the trampoline's catch lasts 6 ms of a failing trial's 0.06 s), at most 8
+// limits. A state counts where its limit is more than 1 % below the prediction at rest (the
+// radius at that prediction drifts by round-off along a calm run). Returns (limit, time); time
+// NaN: the rest's.
+constexpr int kOnTheWaySamples = 64;
+constexpr int kOnTheWayLimits = 8;
+constexpr double kOnTheWayMargin = 1.01;
+std::pair<double, double> stiffestOnTheWay(const Registry& registry, const SceneDocument& scene,
+                                        const std::string& integrator, double predicted, double from,
+                                        double failedAt, double work) {
+  if (!(std::isfinite(predicted) && predicted > 0.0 && std::isfinite(failedAt) && failedAt > from)) return {NAN, NAN};
+  LoadedScene loaded = registry.loadScene(scene);
+  loaded.sim->setIntegrator(registry.makeIntegrator(integrator));
+  if (failedAt / (0.5 * predicted) * loaded.sim->numOfMasses() > work) return {NAN, NAN};
+  const CalmRun calm =
+      calmRun(*loaded.sim, predicted, kOnTheWayMargin, from, failedAt, kOnTheWaySamples, kOnTheWayLimits);
+  if (calm.states == 0) return {NAN, NAN};
+  if (std::isfinite(calm.limit) && calm.limit < predicted) return {calm.limit, calm.time};
+  return {predicted, NAN};
 }
 
 }  // namespace
@@ -145,9 +181,18 @@ CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, cons
   // The rest is reached at swingDt: without a swing run there is none to start from.
   if (!(swingDt > 0.0)) restTime = 0.0;
   HalfLimitRuns reference(registry, scene, integrator, stiffnessScale, swingDt, duration, restTime);
+  std::map<double, double> stoppedAt;  // s, each failing trial's dt: where it was stopped
   auto stable = [&](double dt) {
     ++out.trials;
-    return survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale, reference, restTime, swingDt);
+    double at = NAN;
+    const std::optional<bool> s =
+        survives(registry, scene, integrator, dt, duration, maxSteps, stiffnessScale, reference, restTime, swingDt, at);
+    if (s && !*s) stoppedAt[dt] = at;
+    return s;
+  };
+  auto failedAt = [&](double hi) {
+    const auto it = stoppedAt.find(hi);
+    return it == stoppedAt.end() ? NAN : it->second;
   };
 
   // Bracket: double while stable, halve while unstable. Up to 2^20 (a million) times the first
@@ -194,6 +239,7 @@ CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, cons
     if (stable(mid).value_or(false)) lo = mid; else hi = mid;
   }
   out.measured = lo;
+  out.failedAt = failedAt(hi);
   return out;
 }
 
@@ -227,6 +273,10 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
                               o.fromRest);
       results[i].predicted = predicted;
       results[i].duration = duration;
+      if (o.stiffestOnTheWay) {
+        std::tie(results[i].stiffestOnTheWay, results[i].stiffestOnTheWayAt) = stiffestOnTheWay(
+            registry, scene, names[i], predicted, o.fromRest, results[i].failedAt, o.stiffestOnTheWayWork);
+      }
     } catch (const NotImplemented& e) {
       missing[i] = e.what();
       return;
@@ -281,8 +331,9 @@ StabilityMap stabilityMap(const Registry& registry, const SceneDocument& scene, 
   parallelFor(static_cast<int>(map.cells.size()), o.threads, [&](int i) {
     StabilityMapCell& cell = map.cells[i];
     const std::size_t row = static_cast<std::size_t>(i) / static_cast<std::size_t>(std::max(1, o.dtCount));
+    double stoppedAt = NAN;  // a cell keeps its verdict only
     const std::optional<bool> ok = survives(registry, scene, map.integrator, cell.dt, map.duration, o.maxSteps,
-                                            cell.stiffnessScale, *references[row], 0.0, 0.0);
+                                            cell.stiffnessScale, *references[row], 0.0, 0.0, stoppedAt);
     cell.run = ok.has_value();
     cell.stable = ok.value_or(true);
   }, o.progress ? "stability map cells" : "");
@@ -294,12 +345,14 @@ void writeCsv(const Stability& study, const std::string& path) {
   if (!out) throw std::runtime_error(path + ": cannot write the CSV file");
   out << std::setprecision(10);
   out << "integrator,stability_constant,w_max_rad_s,gershgorin_rad_s,undamped_dt_s,predicted_dt_s,measured_dt_s,"
-         "measured_over_predicted,duration_s\n";
+         "measured_over_predicted,duration_s,failed_at_s,stiffest_on_the_way_dt_s,stiffest_on_the_way_at_s,measured_over_stiffest\n";
   for (const CriticalDt& m : study.methods) {
     const bool finite = std::isfinite(m.predicted) && m.predicted > 0.0;
     out << m.integrator << ',' << m.stabilityConstant << ',' << study.maxAngularFrequency << ','
         << study.gershgorinBound << ',' << m.undamped << ',' << m.predicted << ',' << m.measured << ','
-        << (finite ? m.measured / m.predicted : 0.0) << ',' << m.duration << '\n';
+        << (finite ? m.measured / m.predicted : 0.0) << ',' << m.duration << ',' << m.failedAt << ','
+        << m.stiffestOnTheWay << ',' << m.stiffestOnTheWayAt << ','
+        << (std::isfinite(m.stiffestOnTheWay) ? m.measured / m.stiffestOnTheWay : NAN) << '\n';
   }
   if (!out) throw std::runtime_error(path + ": writing the CSV file failed");
 }

@@ -2,6 +2,7 @@
 // One study run: a scene document, an integrator and a dt, stepped for a simulated duration
 // with the blow-up check on, sampled at fixed times. Every study (work-precision, stability,
 // resolution, advisor) is made of these.
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -69,6 +70,7 @@ struct RunSpec {
 struct RunResult {
   bool stable = true;         // false: the blow-up check stopped it
   std::string failure;        // the blow-up message, when not stable
+  double stoppedAt = NAN;     // s, the scene's time where the blow-up check stopped it
   long steps = 0;
   long forceEvaluations = 0;
   long solverIterations = 0;

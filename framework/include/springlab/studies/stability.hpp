@@ -27,6 +27,12 @@ struct StabilityOptions {
   // measured limit is then that of the rest the prediction linearises at, without the
   // transients on the way there (a landing stiffer than the rest). 0: trials start at t = 0.
   double fromRest = 0.0;
+  // Where the trials failed, the stiffest state on the way (CriticalDt::stiffestOnTheWay): a calm
+  // run (calmRun: the scene from its start at half the predicted limit) up to the time the
+  // smallest failing trial was stopped, linearised at 64 evenly spaced states after fromRest.
+  // Skipped where the calm run would take more than stiffestOnTheWayWork mass-steps.
+  bool stiffestOnTheWay = false;
+  double stiffestOnTheWayWork = 1e9;
 };
 
 // One method's largest stable dt. `measured` is the lower end of the final bracket; it is
@@ -42,6 +48,17 @@ struct CriticalDt {
   double measured = 0.0;
   double duration = 0.0;           // s of simulated time per trial
   int trials = 0;
+  // s, the scene's time where the trial at the bracket's upper end (the smallest dt that
+  // failed) was stopped; NaN: none failed, or it failed by the rest check (no time to name).
+  double failedAt = NAN;
+  // A diagnostic of where the trials failed (StabilityOptions::stiffestOnTheWay): s, the smallest
+  // limit of a state a calm run passes through before failedAt, where that is more than 1 %
+  // below `predicted` (else `predicted` itself), and that state's time (NaN: the rest's); NaN:
+  // not computed. A frozen state's limit, not a prediction: it names the trampoline's catch
+  // (the measured limit 0.99 times it), and it is far below what the trials survive where a
+  // contact or the stretch limit caps the growth (the hanging cloth's catch, the slope's friction).
+  double stiffestOnTheWay = NAN;
+  double stiffestOnTheWayAt = NAN;
 };
 
 struct Stability {
