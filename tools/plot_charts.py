@@ -346,6 +346,13 @@ def stability(folder):
                 text = f"measured\n{m / p:.3g} x predicted\n(slow growth unseen\nin {float(r['duration_s']):.3g} s)"
             else:
                 text = f"measured\n{m / p:.3g} x predicted"
+            # A miss (measured more than 5 % below the prediction) with a state the trials passed
+            # through before they failed stiffer than the rest: that state (stiffest_on_the_way_*,
+            # a frozen state's limit, a diagnostic and not a prediction; every row has it in the CSV).
+            way = float(r.get("stiffest_on_the_way_dt_s", "nan") or "nan")
+            way_at = float(r.get("stiffest_on_the_way_at_s", "nan") or "nan")
+            if way_at == way_at and 0 < way < p and 0 < m < 0.95 * p:
+                text += f";\nstiffest on the way\n{way:.2g} s (t = {way_at:.2g} s)"
             above = max(shown if m == m else 0, p, u if 0 < u < inf else 0)
         else:
             # Unstable at every dt: a trial that survives grows too slowly to show within it.

@@ -110,7 +110,7 @@ int chartStability(const Registry& registry, const StudyCommandOptions& o) {
     // trampoline's catch): its limit and time, and measured against it. A frozen state's limit:
     // a contact or the stretch limit may cap what it grows (the slope's friction).
     if (std::isfinite(m.stiffestOnTheWayAt) && !std::isnan(m.measured)) {
-      std::cout << m.stiffestOnTheWay << " s at t = " << m.stiffestOnTheWayAt << " s (measured/that "
+      std::cout << m.stiffestOnTheWay << " s at t = " << m.stiffestOnTheWayAt << " s (measured_over_stiffest = "
                 << m.measured / m.stiffestOnTheWay << ")";
     } else {
       std::cout << (std::isfinite(m.stiffestOnTheWay) ? "the rest's" : "-");
