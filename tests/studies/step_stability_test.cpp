@@ -235,6 +235,15 @@ studies::RunResult trialAt(const SceneDocument& scene, const std::string& integr
   return studies::runScene(allLabs(), spec);
 }
 
+// The chart's options for one method's row, on one thread and quiet.
+studies::StabilityOptions chartRow(const std::string& integrator) {
+  studies::StabilityOptions o;
+  o.integrators = {integrator};
+  o.threads = 1;
+  o.progress = false;
+  return o;
+}
+
 // Returns the trial at 1.03 times the limit, whose message a test may read.
 studies::RunResult expectStableBelowAndReportedAbove(const SceneDocument& scene, const std::string& integrator) {
   const double predicted = studies::sceneStepStableDt(allLabs(), scene, integrator);
@@ -423,10 +432,7 @@ TEST(BallOnTheFloor, TheContactsDamperLowersTheLimitWhereTheBallTouches) {
   EXPECT_TRUE(below.stable) << "0.97 x " << predicted << " s: " << below.failure;
   // Past the limit the floor caps the growing mode, and the rest check sees it (the run's own
   // check lets 1.03 times the limit run to the end): the chart measures the limit.
-  studies::StabilityOptions o;
-  o.integrators = {"symplectic_euler"};
-  o.threads = 1;
-  o.progress = false;
+  studies::StabilityOptions o = chartRow("symplectic_euler");
   const studies::CriticalDt m = studies::stability(allLabs(), dropped, o).methods.at(0);
   EXPECT_NEAR(m.measured / m.predicted, 1.0, 0.03) << m.measured << " s measured, " << m.predicted << " s predicted";
 }
@@ -834,10 +840,7 @@ TEST(LandingCloth, MidpointRuleHoldsItsLimitFromRestAndFailsEarlierInTheLanding)
 // the rest's start (it passes through the landing too) and finds no state more than 2 % stiffer.
 TEST(LandingCloth, TheChartFromRestMeasuresThePredictionAndFromTheStartTheLanding) {
   const SceneDocument slope = shippedScene("net_sphere_slope_weak_wind.json");
-  studies::StabilityOptions o;
-  o.integrators = {"midpoint"};
-  o.threads = 1;
-  o.progress = false;
+  studies::StabilityOptions o = chartRow("midpoint");
   o.stiffestOnTheWay = true;
   const studies::CriticalDt fromStart = studies::stability(allLabs(), slope, o).methods.at(0);
   o.fromRest = 3.0;
@@ -902,10 +905,7 @@ TEST(TrampolineInTheWind, ExplicitEulerFailsBelowItsRestLimitWhereTheStretchLimi
 // oracle: 11 states 2 ms apart on a run at 2e-5 s), and the measured limit within 5 % of that.
 TEST(TrampolineInTheWind, TheChartFindsExplicitEulersFailureAtTheCatch) {
   const SceneDocument trampoline = shippedScene("net_trampoline.json");
-  studies::StabilityOptions o;
-  o.integrators = {"explicit_euler"};
-  o.threads = 1;
-  o.progress = false;
+  studies::StabilityOptions o = chartRow("explicit_euler");
   o.stiffestOnTheWay = true;
   const studies::CriticalDt row = studies::stability(allLabs(), trampoline, o).methods.at(0);
   ASSERT_TRUE(std::isfinite(row.predicted) && row.predicted > 0.0) << row.predicted;
@@ -1050,10 +1050,7 @@ TEST(WindBall, RestVerdictIsTheSameForEveryDirection) {
 // The chart's bisection, its trials past the limit held to the rest check, measures the wind
 // ball's velocity Verlet within 3 % of the prediction (1.215 times without it).
 TEST(WindBall, ChartMeasuresVelocityVerletAtItsPredictedLimit) {
-  studies::StabilityOptions o;
-  o.integrators = {"velocity_verlet"};
-  o.threads = 1;
-  o.progress = false;
+  studies::StabilityOptions o = chartRow("velocity_verlet");
   const studies::CriticalDt m = studies::stability(allLabs(), shippedScene("softbody_wind.json"), o).methods.at(0);
   ASSERT_TRUE(std::isfinite(m.predicted) && m.predicted > 0.0) << m.predicted;
   EXPECT_NEAR(m.measured / m.predicted, 1.0, 0.03) << m.measured << " s measured, " << m.predicted << " s predicted";
