@@ -1020,10 +1020,15 @@ SmoothRadius smoothRadiusOf(LinearisedRuns& runs, double dt, const StepStability
 
 StepSpectrum stepSpectralRadius(Simulation& sim, double dt, const StepStabilityOptions& options) {
   LinearisedRuns runs(sim, options);
-  if (!options.holdRestingContacts) return radiusOf(runs, dt, options);
+  if (!options.holdRestingContacts) {
+    StepSpectrum out = radiusOf(runs, dt, options);
+    out.restsAfterImpact = runs.restsAfterImpact();
+    return out;
+  }
   // The limit's own linearisation: a fallen body's resting contacts held, NaN where not smooth.
   SmoothRadius r = smoothRadiusOf(runs, dt, options);
   if (!r.smooth) r.spectrum.radius = NAN;
+  r.spectrum.restsAfterImpact = runs.restsAfterImpact();
   return r.spectrum;
 }
 

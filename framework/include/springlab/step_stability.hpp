@@ -93,6 +93,9 @@ struct StepStabilityCancelled : std::runtime_error {
 struct StepSpectrum {
   double radius = 0.0;  // largest |eigenvalue| found
   int steps = 0;        // steps of the scene taken to find it
+  // Linearised where a fallen body came to rest on what it hit (the settling followed its fall
+  // and its impact's ringing): a run from the start gets there only after its fall.
+  bool restsAfterImpact = false;
 };
 StepSpectrum stepSpectralRadius(Simulation& sim, double dt, const StepStabilityOptions& options = {});
 

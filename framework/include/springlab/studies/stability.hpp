@@ -73,9 +73,18 @@ struct Stability {
 // The default trial duration of a scene: 300 periods of its stiffest mode.
 double defaultStabilityDuration(double maxAngularFrequency);
 
+// When a run from the scene's start comes to rest (s): symplectic Euler at half its limit, from
+// the start, its check off, until its kinetic energy has stayed below kRestKinetic times its
+// peak so far for `window` (or until `until`); the last time it was above. 0 where the run
+// cannot be made (no finite limit, not finite). A fallen body's rest, where the prediction
+// linearises (StepSpectrum::restsAfterImpact): the ball dropped on its floor, a dropped cloth.
+constexpr double kRestKinetic = 1e-3;
+double restArrival(const Registry& registry, const SceneDocument& scene, double window, double until);
+
 // The trial time of one method: at least `atLeast`, and long enough for a mode that grows as
 // the linearised step does at 1.03 x the predicted limit to grow by 1e20 (from round-off to
-// a motion the blow-up check sees), at most 100 x atLeast.
+// a motion the blow-up check sees), counted from restArrival where the prediction is a fallen
+// body's rest, at most 100 x atLeast.
 double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                               double predicted, double atLeast);
 
