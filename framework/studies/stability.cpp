@@ -34,9 +34,16 @@ constexpr double kTwinOffset = 1e-6;  // the relative dt of a stable trial's twi
 class HalfLimitRuns {
  public:
   HalfLimitRuns(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                double stiffnessScale, double swingDt, double duration, double restTime = 0.0)
+                double stiffnessScale, double swingDt, double duration, double restTime = 0.0,
+                double restCheckDuration = 0.0)
       : registry_(registry), scene_(scene), integrator_(integrator), stiffnessScale_(stiffnessScale),
-        swingDt_(swingDt), duration_(duration), restTime_(restTime) {}
+        swingDt_(swingDt), duration_(duration), restTime_(restTime),
+        restCheckDuration_(restCheckDuration > 0.0 ? restCheckDuration : duration) {}
+
+  // How long the rest check's runs last: the growth's time, from the rest they start at (not
+  // the arrival a trial from the start needs first: over 17 s the resting ball's own slow drift,
+  // 1.1 /s, separates runs at half the limit 5559 times, and the check would not apply).
+  double restCheckDuration() const { return restCheckDuration_; }
 
   std::shared_ptr<const StableSwing> swing() {
     std::call_once(swingOnce_, [&] {
@@ -71,7 +78,7 @@ class HalfLimitRuns {
     if (!(swingDt_ > 0.0) || dt <= 2.0 * swingDt_) return false;
     std::call_once(restOnce_, [&] {
       rests_ = studies::restCheckApplies(
-          measureRestGrowth(registry_, scene_, integrator_, stiffnessScale_, swingDt_, duration_));
+          measureRestGrowth(registry_, scene_, integrator_, stiffnessScale_, swingDt_, restCheckDuration_));
     });
     return rests_;
   }
@@ -80,7 +87,7 @@ class HalfLimitRuns {
   const Registry& registry_;
   const SceneDocument& scene_;
   std::string integrator_;
-  double stiffnessScale_, swingDt_, duration_, restTime_;
+  double stiffnessScale_, swingDt_, duration_, restTime_, restCheckDuration_;
   std::once_flag swingOnce_, restOnce_, limitOnce_;
   std::shared_ptr<const StableSwing> swing_;
   bool rests_ = false;
@@ -121,7 +128,7 @@ std::optional<bool> survives(const Registry& registry, const SceneDocument& scen
   // the run bounded and within the check's allowances (the wind ball under velocity Verlet
   // survived 1.2 times its limit); where the scene rests, its rest must hold at dt too.
   if (reference.restCheckApplies(dt) &&
-      restBroken(measureRestGrowth(registry, scene, integrator, stiffnessScale, dt, duration))) {
+      restBroken(measureRestGrowth(registry, scene, integrator, stiffnessScale, dt, reference.restCheckDuration()))) {
     return false;
   }
   return true;
@@ -178,7 +185,8 @@ double restArrival(const Registry& registry, const SceneDocument& scene, double 
   } catch (const std::exception&) {
     return 0.0;
   }
-  return arrival;
+  // Still moving at `until`: no rest to arrive at (the wind ball rolls on).
+  return sim.state.time >= arrival + window ? arrival : 0.0;
 }
 
 // Long enough for an instability just past the predicted limit to show: at 1.03 times the
@@ -190,28 +198,30 @@ double restArrival(const Registry& registry, const SceneDocument& scene, double 
 // nearly at rest; with trials of 0.73 s (the growth's 18 ms, at least 300 periods) it measured
 // 2.6 times its limit.
 double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                      double predicted, double atLeast) {
+                      double predicted, double atLeast, double* growthOnly) {
+  if (growthOnly) *growthOnly = atLeast;
   if (!(std::isfinite(predicted) && predicted > 0.0)) return atLeast;
   LoadedScene loaded = registry.loadScene(scene);
   loaded.sim->setIntegrator(registry.makeIntegrator(integrator));
   const double dt = 1.03 * predicted;
   const StepSpectrum spectrum = stepSpectralRadius(*loaded.sim, dt);
-  const double arrival = spectrum.restsAfterImpact ? restArrival(registry, scene, atLeast, 100.0 * atLeast) : 0.0;
+  const double arrival = spectrum.restsAfterImpact ? restArrival(registry, scene, atLeast, 10.0 * atLeast) : 0.0;
   const double radius = spectrum.radius;
-  if (!(radius > 1.0)) return std::clamp(arrival, atLeast, 100.0 * atLeast);
   // At most 100 times `atLeast`: a radius within the finite differences' noise of 1 says
   // the instability grows too slowly to find by running.
-  return std::clamp(arrival + std::log(1e20) / std::log(radius) * dt, atLeast, 100.0 * atLeast);
+  const double growth = radius > 1.0 ? std::log(1e20) / std::log(radius) * dt : 0.0;
+  if (growthOnly) *growthOnly = std::clamp(growth, atLeast, 100.0 * atLeast);
+  return std::clamp(arrival + growth, atLeast, 100.0 * atLeast);
 }
 
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                       double duration, double firstGuess, double tolerance, long maxSteps, double stiffnessScale,
-                      double swingDt, double restTime) {
+                      double swingDt, double restTime, double restCheckDuration) {
   CriticalDt out;
   out.integrator = integrator;
   // The rest is reached at swingDt: without a swing run there is none to start from.
   if (!(swingDt > 0.0)) restTime = 0.0;
-  HalfLimitRuns reference(registry, scene, integrator, stiffnessScale, swingDt, duration, restTime);
+  HalfLimitRuns reference(registry, scene, integrator, stiffnessScale, swingDt, duration, restTime, restCheckDuration);
   std::map<double, double> stoppedAt;  // s, each failing trial's dt: where it was stopped
   auto stable = [&](double dt) {
     ++out.trials;
@@ -298,10 +308,14 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
       const double guess = std::isfinite(predicted) && predicted > 0.0 ? predicted
                            : w > 0.0 ? (std::isinf(predicted) ? 100.0 / w : 2.0 / w)
                                      : 0.01;
-      const double duration = o.duration > 0.0 ? o.duration : stabilityTrialDuration(registry, scene, names[i], predicted, study.duration);
+      // The trial's time, and the rest check's (the growth's alone: it starts at the rest).
+      double growth = o.duration;
+      const double duration = o.duration > 0.0
+                                  ? o.duration
+                                  : stabilityTrialDuration(registry, scene, names[i], predicted, study.duration, &growth);
       const double swingDt = std::isfinite(predicted) && predicted > 0.0 ? 0.5 * predicted : 0.0;
       results[i] = criticalDt(registry, scene, names[i], duration, guess, o.tolerance, o.maxSteps, 1.0, swingDt,
-                              o.fromRest);
+                              o.fromRest, growth);
       results[i].predicted = predicted;
       results[i].duration = duration;
       if (o.stiffestOnTheWay) {

@@ -1011,7 +1011,7 @@ TEST(SelfCollidingCloth, VelocityVerletsTrialLastsUntilTheClothRestsWhereItsLimi
   ASSERT_TRUE(std::isfinite(predicted) && predicted > 0.0) << predicted;
   const double w = studies::sceneLanczosEstimate(allLabs(), cloth);
   const double floor = studies::defaultStabilityDuration(w);
-  const double arrival = studies::restArrival(allLabs(), cloth, floor, 100.0 * floor);
+  const double arrival = studies::restArrival(allLabs(), cloth, floor, 10.0 * floor);
   EXPECT_GT(arrival, 1.2) << "the cloth's fall and fold";
   EXPECT_LT(arrival, 3.0) << "the cloth at rest";
   EXPECT_GT(studies::stabilityTrialDuration(allLabs(), cloth, method, predicted, floor), arrival);

@@ -75,9 +75,10 @@ double defaultStabilityDuration(double maxAngularFrequency);
 
 // When a run from the scene's start comes to rest (s): symplectic Euler at half its limit, from
 // the start, its check off, until its kinetic energy has stayed below kRestKinetic times its
-// peak so far for `window` (or until `until`); the last time it was above. 0 where the run
-// cannot be made (no finite limit, not finite). A fallen body's rest, where the prediction
-// linearises (StepSpectrum::restsAfterImpact): the ball dropped on its floor, a dropped cloth.
+// peak so far for `window`; the last time it was above. 0 where it does not rest by `until`
+// (the wind ball rolls on), or the run cannot be made (no finite limit, not finite). A fallen
+// body's rest, where the prediction linearises (StepSpectrum::restsAfterImpact): the ball
+// dropped on its floor (14 s), a dropped cloth; looked for up to 10 times the trial's floor.
 constexpr double kRestKinetic = 1e-3;
 double restArrival(const Registry& registry, const SceneDocument& scene, double window, double until);
 
@@ -85,17 +86,21 @@ double restArrival(const Registry& registry, const SceneDocument& scene, double 
 // the linearised step does at 1.03 x the predicted limit to grow by 1e20 (from round-off to
 // a motion the blow-up check sees), counted from restArrival where the prediction is a fallen
 // body's rest, at most 100 x atLeast.
+// *growthOnly (when given): the same without the arrival, the rest check's time.
 double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                              double predicted, double atLeast);
+                              double predicted, double atLeast, double* growthOnly = nullptr);
 
 // Largest stable dt of one integrator, bisection from a first guess. With swingDt > 0 (half
 // the predicted limit) each trial's blow-up check allows what a stable run holds, measured once
 // at swingDt over `duration` and shared by the trials (StableSwing, RunSpec::swing). With
 // restTime > 0 as well, each trial runs at swingDt until restTime first (RunSpec::restTime) and
 // lasts `duration` from there.
+// The rest check (past the limit, where the scene rests at swingDt) runs for restCheckDuration
+// (0: `duration`): from the rest it needs the growth's time, not a fall's.
 CriticalDt criticalDt(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
                       double duration, double firstGuess, double tolerance = 0.005, long maxSteps = 4000000,
-                      double stiffnessScale = 1.0, double swingDt = 0.0, double restTime = 0.0);
+                      double stiffnessScale = 1.0, double swingDt = 0.0, double restTime = 0.0,
+                      double restCheckDuration = 0.0);
 
 Stability stability(const Registry& registry, const SceneDocument& scene, const StabilityOptions& options);
 
