@@ -136,13 +136,14 @@ std::optional<bool> survives(const Registry& registry, const SceneDocument& scen
 
 // The stiffest state on the way to where the trials failed: a calm run at half the predicted
 // limit (the dt trials from the rest run there at first) from the scene's start up to the time
-// the smallest failing trial was stopped, probed at 64 states after `from` (where the trials
-// switch to their dt; the trampoline's catch lasts 6 ms of a failing trial's 0.06 s), at most 8
-// limits. A state counts where its limit is more than 1 % below the prediction at rest (the
+// the smallest failing trial was stopped, probed at 128 states after `from` (where the trials
+// switch to their dt; the trampoline's catch lasts 6 ms of a failing trial's 0.06 s: with 64
+// states 1 ms apart a build without OpenMP found its states there not smooth, and named 0.256 ms
+// at 0.047 s for 0.240), at most 16 limits. A state counts where its limit is more than 1 % below the prediction at rest (the
 // radius at that prediction drifts by round-off along a calm run). Returns (limit, time); time
 // NaN: the rest's.
-constexpr int kOnTheWaySamples = 64;
-constexpr int kOnTheWayLimits = 8;
+constexpr int kOnTheWaySamples = 128;
+constexpr int kOnTheWayLimits = 16;
 constexpr double kOnTheWayMargin = 1.01;
 std::pair<double, double> stiffestOnTheWay(const Registry& registry, const SceneDocument& scene,
                                         const std::string& integrator, double predicted, double from,

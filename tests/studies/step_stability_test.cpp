@@ -901,7 +901,7 @@ TEST(TrampolineInTheWind, ExplicitEulerFailsBelowItsRestLimitWhereTheStretchLimi
 
 // The chart's row for it: the limit at rest is 0.318 ms and the bisection measures 0.75 times it;
 // the stiffest state on the way (a calm run at half the rest's limit up to where the smallest
-// failing trial was stopped, 64 states) is the catch, its limit within 5 % of the fine run's (the
+// failing trial was stopped, 128 states) is the catch, its limit within 5 % of the fine run's (the
 // oracle: 11 states 2 ms apart on a run at 2e-5 s), and the measured limit within 5 % of that.
 TEST(TrampolineInTheWind, TheChartFindsExplicitEulersFailureAtTheCatch) {
   const SceneDocument trampoline = shippedScene("net_trampoline.json");

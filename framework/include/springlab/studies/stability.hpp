@@ -29,7 +29,7 @@ struct StabilityOptions {
   double fromRest = 0.0;
   // Where the trials failed, the stiffest state on the way (CriticalDt::stiffestOnTheWay): a calm
   // run (calmRun: the scene from its start at half the predicted limit) up to the time the
-  // smallest failing trial was stopped, linearised at 64 evenly spaced states after fromRest.
+  // smallest failing trial was stopped, linearised at 128 evenly spaced states after fromRest.
   // Skipped where the calm run would take more than stiffestOnTheWayWork mass-steps.
   bool stiffestOnTheWay = false;
   double stiffestOnTheWayWork = 1e9;
