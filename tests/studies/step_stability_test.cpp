@@ -927,7 +927,7 @@ TEST(TrampolineInTheWind, TheChartFindsExplicitEulersFailureAtTheCatch) {
 // limit goes through the catch and lasts. Without the stretch limit the same states' radius stays
 // below 1. The stretch limit's projection caps the stretch the frozen step would grow: where it
 // acts, the smallest frozen limit on the way is far below what the runs survive (the chart's
-// stiffest state on the way: 0.239 ms against a measured 0.450 ms), and is a diagnostic, not the
+// stiffest state on the way: 0.234 ms against a measured 0.450 ms), and is a diagnostic, not the
 // limit.
 TEST(HangingCloth, TheStretchLimitCapsWhatTheFrozenStepGrowsInTheCatch) {
   const SceneDocument hanging = shippedScene("net_hanging.json");
