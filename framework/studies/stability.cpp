@@ -190,6 +190,11 @@ double restArrival(const Registry& registry, const SceneDocument& scene, double 
   return sim.state.time >= arrival + window ? arrival : 0.0;
 }
 
+double SceneRestArrival::get(const Registry& registry, const SceneDocument& scene, double window) {
+  std::call_once(once_, [&] { arrival_ = restArrival(registry, scene, window, 10.0 * window); });
+  return arrival_;
+}
+
 // Long enough for an instability just past the predicted limit to show: at 1.03 times the
 // limit the linearised step grows a mode by its spectral radius per step; the trial lasts
 // until that is 1e20 (46 e-foldings: from round-off to a visible motion), at least `atLeast`.
@@ -199,14 +204,18 @@ double restArrival(const Registry& registry, const SceneDocument& scene, double 
 // nearly at rest; with trials of 0.73 s (the growth's 18 ms, at least 300 periods) it measured
 // 2.6 times its limit.
 double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                      double predicted, double atLeast, double* growthOnly) {
+                      double predicted, double atLeast, double* growthOnly, SceneRestArrival* sharedArrival) {
   if (growthOnly) *growthOnly = atLeast;
   if (!(std::isfinite(predicted) && predicted > 0.0)) return atLeast;
   LoadedScene loaded = registry.loadScene(scene);
   loaded.sim->setIntegrator(registry.makeIntegrator(integrator));
   const double dt = 1.03 * predicted;
   const StepSpectrum spectrum = stepSpectralRadius(*loaded.sim, dt);
-  const double arrival = spectrum.restsAfterImpact ? restArrival(registry, scene, atLeast, 10.0 * atLeast) : 0.0;
+  double arrival = 0.0;
+  if (spectrum.restsAfterImpact) {
+    arrival = sharedArrival ? sharedArrival->get(registry, scene, atLeast)
+                            : restArrival(registry, scene, atLeast, 10.0 * atLeast);
+  }
   const double radius = spectrum.radius;
   // At most 100 times `atLeast`: a radius within the finite differences' noise of 1 says
   // the instability grows too slowly to find by running.
@@ -301,6 +310,7 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
   // limit within the doublings, reported as inf).
   std::vector<CriticalDt> results(names.size());
   std::vector<std::string> missing(names.size());
+  SceneRestArrival arrival;  // the scene's, whichever method asks first
   parallelFor(static_cast<int>(names.size()), o.threads, [&](int i) {
     const double c = stabilityConstant(registry, names[i]);
     const double w = study.maxAngularFrequency;
@@ -313,7 +323,8 @@ Stability stability(const Registry& registry, const SceneDocument& scene, const 
       double growth = o.duration;
       const double duration = o.duration > 0.0
                                   ? o.duration
-                                  : stabilityTrialDuration(registry, scene, names[i], predicted, study.duration, &growth);
+                                  : stabilityTrialDuration(registry, scene, names[i], predicted, study.duration, &growth,
+                                                           &arrival);
       const double swingDt = std::isfinite(predicted) && predicted > 0.0 ? 0.5 * predicted : 0.0;
       results[i] = criticalDt(registry, scene, names[i], duration, guess, o.tolerance, o.maxSteps, 1.0, swingDt,
                               o.fromRest, growth);

@@ -1017,7 +1017,12 @@ TEST(SelfCollidingCloth, VelocityVerletsTrialLastsUntilTheClothRestsWhereItsLimi
   const double arrival = studies::restArrival(allLabs(), cloth, floor, 10.0 * floor);
   EXPECT_GT(arrival, 1.2) << "the cloth's fall and fold";
   EXPECT_LT(arrival, 3.0) << "the cloth at rest";
-  EXPECT_GT(studies::stabilityTrialDuration(allLabs(), cloth, method, predicted, floor), arrival);
+  const double trial = studies::stabilityTrialDuration(allLabs(), cloth, method, predicted, floor);
+  EXPECT_GT(trial, arrival);
+  // The chart's methods share the scene's arrival (one fall, not one per method): the same trial.
+  studies::SceneRestArrival shared;
+  EXPECT_DOUBLE_EQ(studies::stabilityTrialDuration(allLabs(), cloth, method, predicted, floor, nullptr, &shared), trial);
+  EXPECT_DOUBLE_EQ(shared.get(allLabs(), cloth, floor), arrival);
   const studies::RunResult past = trialAt(cloth, method, predicted, 1.03);
   EXPECT_FALSE(past.stable) << "1.03 x " << predicted << " s";
   EXPECT_GT(past.stoppedAt, floor) << "after the old trial's end: " << past.failure;

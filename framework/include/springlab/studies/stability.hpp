@@ -6,6 +6,7 @@
 // method's stability constant, w_max: the Lanczos estimate at the start).
 // And a map over stiffness x dt for one integrator: stable and unstable cells, with the
 // predicted boundary at each stiffness.
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -82,13 +83,26 @@ double defaultStabilityDuration(double maxAngularFrequency);
 constexpr double kRestKinetic = 1e-3;
 double restArrival(const Registry& registry, const SceneDocument& scene, double window, double until);
 
+// restArrival of one scene, run once by whichever thread asks first and shared by the chart's
+// methods (its run is symplectic Euler's whatever the method charted: the self-colliding
+// cloth's 2.5 s of fall, once instead of once per method).
+class SceneRestArrival {
+ public:
+  double get(const Registry& registry, const SceneDocument& scene, double window);
+
+ private:
+  std::once_flag once_;
+  double arrival_ = 0.0;
+};
+
 // The trial time of one method: at least `atLeast`, and long enough for a mode that grows as
 // the linearised step does at 1.03 x the predicted limit to grow by 1e20 (from round-off to
 // a motion the blow-up check sees), counted from restArrival where the prediction is a fallen
 // body's rest, at most 100 x atLeast.
 // *growthOnly (when given): the same without the arrival, the rest check's time.
 double stabilityTrialDuration(const Registry& registry, const SceneDocument& scene, const std::string& integrator,
-                              double predicted, double atLeast, double* growthOnly = nullptr);
+                              double predicted, double atLeast, double* growthOnly = nullptr,
+                              SceneRestArrival* sharedArrival = nullptr);
 
 // Largest stable dt of one integrator, bisection from a first guess. With swingDt > 0 (half
 // the predicted limit) each trial's blow-up check allows what a stable run holds, measured once
