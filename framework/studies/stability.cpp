@@ -211,11 +211,9 @@ double stabilityTrialDuration(const Registry& registry, const SceneDocument& sce
   loaded.sim->setIntegrator(registry.makeIntegrator(integrator));
   const double dt = 1.03 * predicted;
   const StepSpectrum spectrum = stepSpectralRadius(*loaded.sim, dt);
-  double arrival = 0.0;
-  if (spectrum.restsAfterImpact) {
-    arrival = sharedArrival ? sharedArrival->get(registry, scene, atLeast)
-                            : restArrival(registry, scene, atLeast, 10.0 * atLeast);
-  }
+  SceneRestArrival own;
+  SceneRestArrival& rest = sharedArrival ? *sharedArrival : own;
+  const double arrival = spectrum.restsAfterImpact ? rest.get(registry, scene, atLeast) : 0.0;
   const double radius = spectrum.radius;
   // At most 100 times `atLeast`: a radius within the finite differences' noise of 1 says
   // the instability grows too slowly to find by running.

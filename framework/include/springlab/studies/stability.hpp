@@ -83,7 +83,8 @@ double defaultStabilityDuration(double maxAngularFrequency);
 constexpr double kRestKinetic = 1e-3;
 double restArrival(const Registry& registry, const SceneDocument& scene, double window, double until);
 
-// restArrival of one scene, run once by whichever thread asks first and shared by the chart's
+// restArrival of one scene (window: the first ask's, up to 10 windows), run once by whichever
+// thread asks first and shared by the chart's
 // methods (its run is symplectic Euler's whatever the method charted: the self-colliding
 // cloth's 2.5 s of fall, once instead of once per method).
 class SceneRestArrival {
